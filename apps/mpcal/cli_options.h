@@ -1,0 +1,35 @@
+// Flag groups shared by several subcommands, so that every subcommand spells
+// the same option the same way (`--units`, `--columns`, `--gravity`, ...).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "mpcal/calibrate.h"
+#include "mpcal/log_reader.h"
+
+namespace mpcal::cli {
+
+/// --columns, --units, --time-unit, --rate, --gyro-units.
+void AddLogOptions(CLI::App& app, LogOptions& options);
+
+/// --gravity | --latitude [--height]: the local magnitude of gravity.
+struct GravityFlags {
+  std::optional<double> gravity_mps2;
+  std::optional<double> latitude_deg;
+  double height_m = 0.0;
+  /// The value to use: the given one, WGS84 normal gravity at the site, or
+  /// standard gravity (9.80665 m/s², the paper's) by default.
+  double Resolve() const;
+};
+void AddGravityOptions(CLI::App& app, GravityFlags& flags);
+
+/// --model, --robust, detection tuning (--window, --min-static, ...).
+void AddCalibrateOptions(CLI::App& app, CalibrateOptions& options);
+
+/// Throws mpcal::Error naming the option when `problem` is not empty.
+void ThrowIfInvalid(const std::string& problem, const std::string& what);
+
+}  // namespace mpcal::cli

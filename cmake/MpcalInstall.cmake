@@ -1,0 +1,24 @@
+# `cmake --install`: headers, the room libraries under the export set
+# mpcal::, and a package config so that find_package(mpcal) works.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(_rooms)
+foreach(room IN LISTS MPCAL_ROOMS)
+  list(APPEND _rooms mpcal_${room})
+endforeach()
+install(TARGETS mpcal ${_rooms} EXPORT mpcalTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY include/mpcal DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(TARGETS mpcal_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(EXPORT mpcalTargets NAMESPACE mpcal::
+        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/mpcal)
+configure_package_config_file(cmake/mpcalConfig.cmake.in
+  ${CMAKE_CURRENT_BINARY_DIR}/mpcalConfig.cmake
+  INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/mpcal)
+write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/mpcalConfigVersion.cmake
+  COMPATIBILITY SameMajorVersion)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/mpcalConfig.cmake
+              ${CMAKE_CURRENT_BINARY_DIR}/mpcalConfigVersion.cmake
+        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/mpcal)

@@ -1,0 +1,29 @@
+# Helpers that give every mpcal target the same settings.
+
+# Warnings on our own targets only; -Werror behind MPCAL_WARNINGS_AS_ERRORS.
+add_library(mpcal_warnings INTERFACE)
+target_compile_options(mpcal_warnings INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align
+  -Wunused -Woverloaded-virtual -Wnull-dereference -Wimplicit-fallthrough
+  $<$<BOOL:${MPCAL_WARNINGS_AS_ERRORS}>:-Werror>)
+if(MPCAL_SANITIZE)
+  target_compile_options(mpcal_warnings INTERFACE
+    -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  target_link_options(mpcal_warnings INTERFACE -fsanitize=address,undefined)
+endif()
+
+# mpcal_room(NAME SOURCES a.cc b.cc [PUBLIC deps...] [PRIVATE deps...])
+# A room of the library: static library mpcal_NAME over the public headers.
+function(mpcal_room name)
+  cmake_parse_arguments(ROOM "" "" "SOURCES;PUBLIC;PRIVATE" ${ARGN})
+  add_library(mpcal_${name} STATIC ${ROOM_SOURCES})
+  target_include_directories(mpcal_${name}
+    PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+           $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>
+    PRIVATE ${PROJECT_SOURCE_DIR}/src)
+  target_compile_features(mpcal_${name} PUBLIC cxx_std_20)
+  set_target_properties(mpcal_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  target_link_libraries(mpcal_${name}
+    PUBLIC Eigen3::Eigen ${ROOM_PUBLIC}
+    PRIVATE $<BUILD_INTERFACE:mpcal_warnings> ${ROOM_PRIVATE})
+endfunction()

@@ -1,0 +1,32 @@
+/// \file atomic_file.h
+/// \brief Output files that appear whole or not at all.
+///
+/// Every file mpcal writes goes through here: the content is written to a
+/// temporary file in the destination's directory and renamed over the
+/// destination only on success, so an error or a crash never leaves a
+/// half-written file behind. "-" means standard output.
+#pragma once
+
+#include <functional>
+#include <ostream>
+#include <string>
+
+namespace mpcal {
+
+/// Writes `content` to `path` atomically.
+/// \throws mpcal::Error when the directory is missing or not writable, or the
+///   path is a directory.
+void WriteFileAtomically(const std::string& path, const std::string& content);
+
+/// Streams into `path` atomically: `write` gets an ostream; the file appears
+/// only if `write` returns without throwing and every byte reached the disk.
+/// \throws mpcal::Error on I/O failure; rethrows what `write` throws (and
+///   removes the temporary file).
+void WriteStreamAtomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& write);
+
+/// Refuses (throws mpcal::Error) when `output` names the same file as
+/// `input` (same path, or the same inode through a link).
+void RefuseOverwritingInput(const std::string& input, const std::string& output);
+
+}  // namespace mpcal

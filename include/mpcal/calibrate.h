@@ -1,0 +1,41 @@
+/// \file calibrate.h
+/// \brief A whole calibration from a recording: detect the static positions,
+/// turn their means into m/s² (finding the nominal scale of raw counts),
+/// initialise, solve, and package the result as a Calibration.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mpcal/calibration.h"
+#include "mpcal/detect.h"
+#include "mpcal/recording.h"
+#include "mpcal/solve.h"
+
+namespace mpcal {
+
+struct CalibrateOptions {
+  DetectOptions detect;
+  SolveOptions solve;
+  std::string Validate() const;
+};
+
+struct CalibrateResult {
+  DetectResult detection;
+  /// The positions given to the solver (m/s²), in detection order.
+  std::vector<PositionObservation> positions;
+  /// Factor applied to the recording's units to get nominal m/s².
+  double mps2_per_unit = 1.0;
+  SolveResult solve;
+  /// What goes into the calibration file.
+  Calibration calibration;
+  std::vector<std::string> warnings;
+};
+
+/// \throws mpcal::Error when the recording has too few static positions for
+///   the model (the message says how many were found and what to record), or
+///   when the positions leave a parameter undetermined, or invalid options.
+CalibrateResult CalibrateRecording(const Recording& recording,
+                                   const CalibrateOptions& options);
+
+}  // namespace mpcal

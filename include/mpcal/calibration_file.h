@@ -1,0 +1,33 @@
+/// \file calibration_file.h
+/// \brief The calibration file: JSON, `"format": "mpcal.accelerometer/1"`,
+/// SI units, every name carrying its unit. The schema is in the README.
+#pragma once
+
+#include <string>
+
+#include "mpcal/calibration.h"
+
+namespace mpcal {
+
+/// The format tag this version writes.
+inline constexpr const char* kCalibrationFormat = "mpcal.accelerometer/1";
+
+/// Serialises to the JSON text of the file (pretty-printed, newline-ended).
+std::string CalibrationToJson(const Calibration& calibration);
+
+/// Parses the JSON text of a calibration file. `origin` names the source in
+/// messages (a path).
+/// \throws mpcal::Error for malformed JSON, a missing or wrongly-typed field,
+///   an unknown format or major version, an unknown model or unit, or a
+///   non-finite value.
+Calibration CalibrationFromJson(const std::string& text, const std::string& origin);
+
+/// Reads and parses a calibration file.
+/// \throws mpcal::Error as CalibrationFromJson, or when unreadable.
+Calibration ReadCalibrationFile(const std::string& path);
+
+/// Writes atomically (temporary file beside it, then rename).
+/// \throws mpcal::Error when the file cannot be written.
+void WriteCalibrationFile(const std::string& path, const Calibration& calibration);
+
+}  // namespace mpcal

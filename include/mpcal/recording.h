@@ -1,0 +1,34 @@
+/// \file recording.h
+/// \brief An accelerometer recording in memory: time and readings.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mpcal/units.h"
+
+namespace mpcal {
+
+/// One log, as read. Readings stay in the log's units (`units`) so that raw
+/// counts can be calibrated without a guessed scale; `time_s` is seconds from
+/// an arbitrary origin (the log's own clock), strictly increasing after
+/// reading (duplicates are reported and dropped by the reader).
+struct Recording {
+  std::vector<double> time_s;
+  /// Accelerometer readings (x, y, z) in `units`.
+  std::vector<Eigen::Vector3d> accel;
+  /// Gyroscope readings (rad/s); empty when the log has none.
+  std::vector<Eigen::Vector3d> gyro_radps;
+  AccelUnits units = AccelUnits::kMps2;
+  /// Where it came from (file name, or "<simulated>"), for messages.
+  std::string source;
+  /// Non-fatal findings of the reader (gaps, duplicates, truncated last line).
+  std::vector<std::string> warnings;
+
+  std::size_t size() const { return time_s.size(); }
+  bool empty() const { return time_s.empty(); }
+};
+
+}  // namespace mpcal

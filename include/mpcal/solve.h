@@ -1,0 +1,90 @@
+/// \file solve.h
+/// \brief The estimator of the modified multi-position method (Souza & Machado
+/// 2016, eqs 11-12; Syed et al. 2007): six-position initialisation, then
+/// nonlinear least squares over the static-position means, with covariance.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mpcal/calibration.h"
+#include "mpcal/model.h"
+
+namespace mpcal {
+
+/// One static position, in m/s² (already scaled by the nominal sensitivity).
+struct PositionObservation {
+  Eigen::Vector3d mean_mps2 = Eigen::Vector3d::Zero();
+  /// Per-axis sample standard deviation of the readings (m/s²).
+  Eigen::Vector3d sample_std_mps2 = Eigen::Vector3d::Zero();
+  std::size_t samples = 0;
+  /// Where it is in the recording (s), for messages.
+  double start_s = 0.0;
+  double end_s = 0.0;
+};
+
+enum class RobustLoss { kNone, kHuber, kCauchy };
+std::string_view ToString(RobustLoss loss);
+std::optional<RobustLoss> ParseRobustLoss(std::string_view name);
+
+struct SolveOptions {
+  ModelKind model = ModelKind::kShinElSheimy9;
+  /// Magnitude of gravity at the site (m/s²); see gravity.h.
+  double gravity_mps2 = 9.80665;
+  /// Robust loss on the whitened residuals; kNone is the paper's estimator.
+  RobustLoss robust = RobustLoss::kNone;
+  /// Iteration cap of the Levenberg-Marquardt solver.
+  int max_iterations = 100;
+
+  /// Empty string when valid, otherwise names the first bad field.
+  std::string Validate() const;
+};
+
+enum class SolveStatus { kConverged, kNoConvergence };
+std::string_view ToString(SolveStatus status);
+
+struct SolveResult {
+  SolveStatus status = SolveStatus::kNoConvergence;
+  std::string message;
+  ErrorModel initial;   ///< six-position initialisation
+  ErrorModel estimate;
+  /// Covariance of the 9 packed parameters (order of kParameterNames), scaled
+  /// by the a-posteriori variance of unit weight. Rows and columns of
+  /// parameters held fixed (angles of kBiasScale6) are zero.
+  Eigen::Matrix<double, 9, 9> covariance = Eigen::Matrix<double, 9, 9>::Zero();
+  ErrorModel std;  ///< square roots of the covariance diagonal
+  /// |a_k| − g per position (m/s²) at the initial (raw: identity) model and
+  /// at the estimate.
+  std::vector<double> residual_before_mps2;
+  std::vector<double> residual_after_mps2;
+  double residual_rms_before_mps2 = 0.0;
+  double residual_rms_after_mps2 = 0.0;
+  /// χ² of the whitened residuals over degrees of freedom.
+  double variance_factor = 0.0;
+  double final_cost = 0.0;
+  int iterations = 0;
+  std::vector<std::string> warnings;
+
+  bool converged() const { return status == SolveStatus::kConverged; }
+  /// One line: status, iterations, RMS before/after.
+  std::string BriefReport() const;
+};
+
+/// Six-position initialisation (Syed et al. 2007): for each axis the recorded
+/// positions with that axis nearest up and down give b ≈ (Y_up + Y_down)/2 and
+/// 1 + s ≈ (Y_up − Y_down)/(2g); angles start at zero.
+/// \throws mpcal::Error if fewer than 2 positions are given.
+ErrorModel InitialiseSixPosition(std::span<const PositionObservation> positions,
+                                 double gravity_mps2);
+
+/// Estimates the model from the position means.
+/// \throws mpcal::Error for invalid options, or fewer positions than the
+///   model has parameters (+1), or non-finite observations.
+SolveResult Solve(std::span<const PositionObservation> positions,
+                  const SolveOptions& options);
+
+}  // namespace mpcal

@@ -1,0 +1,30 @@
+/// \file units.h
+/// \brief Units of accelerometer readings at the edges of mpcal.
+///
+/// Inside mpcal everything is SI (m/s², s, rad). A log may be in m/s², in g
+/// (standard gravity, 9.80665 m/s² per g — a unit, not the local gravity) or
+/// in raw ADC counts, whose nominal scale is found from the data.
+#pragma once
+
+#include <optional>
+#include <string_view>
+
+namespace mpcal {
+
+/// Standard gravity, the definition of the unit g (m/s²).
+inline constexpr double kStandardGravityMps2 = 9.80665;
+
+enum class AccelUnits {
+  kMps2,    ///< metres per second squared
+  kG,       ///< standard g (9.80665 m/s²)
+  kCounts,  ///< raw ADC counts; scale and offset found from the positions
+};
+
+/// "mps2", "g" or "counts".
+std::string_view ToString(AccelUnits units);
+/// Inverse of ToString (also accepts "m/s2", "m/s^2"); nullopt if unknown.
+std::optional<AccelUnits> ParseAccelUnits(std::string_view name);
+/// m/s² per unit for kMps2 and kG; nullopt for kCounts (found from data).
+std::optional<double> FixedMps2PerUnit(AccelUnits units);
+
+}  // namespace mpcal

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Installs the Debian packages mpcal needs to build, test and benchmark.
+# Idempotent and non-interactive: it installs only what is missing, and runs
+# `apt-get update` first only when there is something to install. When not
+# root it prints the apt-get command instead of running it.
+#
+#   scripts/install-deps.sh            build + test dependencies
+#   scripts/install-deps.sh --browser  also chromium (report rendering tests)
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev        # matrices, the error model
+  libceres-dev         # nonlinear least squares, autodiff, covariance
+  libgeographiclib-dev # WGS84 normal gravity, geodetic <-> local ENU
+  libcli11-dev         # command line
+  nlohmann-json3-dev   # calibration and result files
+  libfmt-dev           # tables and messages
+  libfast-float-dev    # parsing numbers from logs
+  libgtest-dev libgmock-dev googletest
+  libbenchmark-dev
+  chromium             # headless rendering of the HTML report in tests
+  clang                # libFuzzer targets (make fuzz)
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+cmd=(apt-get install -y --no-install-recommends "${missing[@]}")
+if [ "$(id -u)" -ne 0 ]; then
+  echo "mpcal: missing packages: ${missing[*]}" >&2
+  echo "run: sudo apt-get update && sudo ${cmd[*]}" >&2
+  exit 1
+fi
+echo "mpcal: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+"${cmd[@]}"

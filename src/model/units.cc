@@ -1,0 +1,36 @@
+#include "mpcal/units.h"
+
+namespace mpcal {
+
+std::string_view ToString(AccelUnits units) {
+  switch (units) {
+    case AccelUnits::kMps2:
+      return "mps2";
+    case AccelUnits::kG:
+      return "g";
+    case AccelUnits::kCounts:
+      return "counts";
+  }
+  return "unknown";
+}
+
+std::optional<AccelUnits> ParseAccelUnits(std::string_view name) {
+  if (name == "mps2" || name == "m/s2" || name == "m/s^2") return AccelUnits::kMps2;
+  if (name == "g") return AccelUnits::kG;
+  if (name == "counts") return AccelUnits::kCounts;
+  return std::nullopt;
+}
+
+std::optional<double> FixedMps2PerUnit(AccelUnits units) {
+  switch (units) {
+    case AccelUnits::kMps2:
+      return 1.0;
+    case AccelUnits::kG:
+      return kStandardGravityMps2;
+    case AccelUnits::kCounts:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+}  // namespace mpcal

@@ -1,0 +1,62 @@
+// Test helpers shared by every suite: data locations and scratch files.
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace mpcal::testing {
+
+/// A file among the project's own small test logs (tests/data/).
+inline std::string TestDataPath(const std::string& name) {
+  return std::string(MPCAL_TEST_DATA_DIR) + "/" + name;
+}
+
+/// A file among the team's real recordings (../shared/data/).
+inline std::string SharedDataPath(const std::string& name) {
+  return std::string(MPCAL_SHARED_DATA_DIR) + "/" + name;
+}
+
+/// A fresh scratch directory for one test, removed with the object.
+class ScratchDir {
+ public:
+  ScratchDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::random_device rd;
+    path_ = std::filesystem::temp_directory_path() /
+            (std::string("mpcal_") + (info ? info->name() : "test") + "_" +
+             std::to_string(rd()));
+    std::filesystem::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+
+  /// Path of `name` inside the directory.
+  std::string Path(const std::string& name) const { return (path_ / name).string(); }
+  /// Writes `content` to `name` and returns its path.
+  std::string Write(const std::string& name, const std::string& content) const {
+    std::ofstream(Path(name), std::ios::binary) << content;
+    return Path(name);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+inline std::string ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace mpcal::testing
