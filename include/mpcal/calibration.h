@@ -15,6 +15,31 @@
 
 namespace mpcal {
 
+/// One static position as the fit saw it (`"positions"` in the file), so
+/// that a calibration file alone is enough to judge and plot the fit.
+struct PositionSummary {
+  double start_s = 0.0;  ///< in the log's own clock
+  double end_s = 0.0;
+  std::size_t samples = 0;
+  /// Mean reading scaled to nominal m/s² (reading × mps2_per_unit).
+  Eigen::Vector3d mean_mps2 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d sample_std_mps2 = Eigen::Vector3d::Zero();
+  /// |a| − g with the raw reading (nominal scale only) and corrected (m/s²).
+  double residual_before_mps2 = 0.0;
+  double residual_after_mps2 = 0.0;
+  /// Residual predicted by a fit without this position (m/s²).
+  std::optional<double> cross_validation_residual_mps2;
+  /// False when the position was excluded from the fit (outlier).
+  bool used = true;
+};
+
+/// Where a calibration came from, so that a report can be reproduced.
+struct Provenance {
+  std::string mpcal_version;
+  std::string input;    ///< the log's path, as given
+  std::string options;  ///< the options that mattered, as a command line
+};
+
 /// How the fit went, as recorded in the file (`"fit"`).
 struct FitSummary {
   int positions = 0;
@@ -22,6 +47,8 @@ struct FitSummary {
   double residual_rms_after_mps2 = 0.0;
   int iterations = 0;
   bool converged = false;
+  /// Positions excluded as outliers (not counted in `positions`).
+  int excluded_positions = 0;
   /// A-posteriori variance of unit weight (χ²/dof); ≈1 when the residuals
   /// are what the sensor noise explains.
   std::optional<double> variance_factor;
@@ -41,6 +68,12 @@ struct Calibration {
   /// 1σ of each parameter (same layout); nullopt when not estimated (truth).
   std::optional<ErrorModel> std;
   std::optional<FitSummary> fit;
+  /// Per-position detail; empty for a truth file.
+  std::vector<PositionSummary> positions;
+  /// Warnings the user should see with the calibration (poorly determined
+  /// parameters, excluded positions, ...).
+  std::vector<std::string> warnings;
+  std::optional<Provenance> provenance;
 
   /// Specific force (m/s²) from a reading in `input_units`.
   Eigen::Vector3d Correct(const Eigen::Vector3d& reading) const {
