@@ -1,0 +1,95 @@
+// mpcal calibrate: a raw log in, a calibration file and a table out.
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "calibration_table.h"
+#include "cli_options.h"
+#include "command.h"
+#include "mpcal/atomic_file.h"
+#include "mpcal/calibrate.h"
+#include "mpcal/calibration_file.h"
+#include "mpcal/error.h"
+#include "mpcal/log_reader.h"
+#include "progress.h"
+
+namespace mpcal::cli {
+namespace {
+
+struct CalibrateFlags {
+  std::string input;
+  std::string output;
+  LogOptions log;
+  GravityFlags gravity;
+  CalibrateOptions calibrate;
+};
+
+// The options that shaped the result, as a command line a user can rerun.
+std::string DescribeOptions(const CalibrateFlags& f) {
+  return fmt::format(
+      "--units {} --gravity {:.6f} --model {} --robust {} --window {} --min-static {} "
+      "--settle {} --threshold {}{}",
+      ToString(f.log.units), f.calibrate.solve.gravity_mps2, ToString(f.calibrate.solve.model),
+      ToString(f.calibrate.solve.robust), f.calibrate.detect.window_s,
+      f.calibrate.detect.min_static_s, f.calibrate.detect.settle_s,
+      f.calibrate.detect.threshold_factor,
+      f.log.columns.empty() ? "" : " --columns " + f.log.columns);
+}
+
+void Run(CalibrateFlags& f) {
+  if (!f.output.empty()) RefuseOverwritingInput(f.input, f.output);
+  f.calibrate.solve.gravity_mps2 = f.gravity.Resolve();
+  ThrowIfInvalid(f.calibrate.Validate(), "calibrate");
+
+  TerminalProgress progress("reading " + f.input);
+  f.log.progress = progress.Callback();
+  const Recording recording = ReadLog(f.input, f.log);
+  progress.Done();
+  PrintWarnings(recording.warnings);
+
+  CalibrateResult result = CalibrateRecording(recording, f.calibrate);
+  result.calibration.provenance =
+      Provenance{MPCAL_VERSION, f.input, DescribeOptions(f)};
+
+  fmt::print("{}: {} rows, {:.1f} s; model {}, gravity {:.5f} m/s2\n", f.input,
+             recording.size(), recording.time_s.back() - recording.time_s.front(),
+             ToString(f.calibrate.solve.model), f.calibrate.solve.gravity_mps2);
+  fmt::print("{}\n{}", FormatParameterTable(result.calibration), FormatFitSummary(result));
+  PrintWarnings(result.warnings);
+  if (!result.solve.converged()) {
+    throw Error(fmt::format("{}: the fit did not converge ({}); no calibration written. "
+                            "Check the positions with 'mpcal detect {}'",
+                            f.input, result.solve.message, f.input));
+  }
+  if (!f.output.empty()) {
+    WriteCalibrationFile(f.output, result.calibration);
+    fmt::print("wrote {}\n", f.output);
+  }
+}
+
+}  // namespace
+
+void AddCalibrateCommand(CLI::App& root) {
+  auto flags = std::make_shared<CalibrateFlags>();
+  CLI::App* app = root.add_subcommand(
+      "calibrate",
+      "Detect the static positions in a log, estimate bias, scale-factor errors and "
+      "non-orthogonality with their 1σ, and write a calibration file");
+  app->add_option("INPUT", flags->input, "Log: CSV or text, '-' for standard input")
+      ->required();
+  app->add_option("-o,--output", flags->output,
+                  "Calibration file to write (JSON, mpcal.accelerometer/1); without it, "
+                  "only print");
+  AddLogOptions(*app, flags->log);
+  AddGravityOptions(*app, flags->gravity);
+  AddCalibrateOptions(*app, flags->calibrate);
+  app->footer(
+      "Examples:\n"
+      "  mpcal calibrate session.csv -o calib.json\n"
+      "  mpcal calibrate xsens_acc.mat --units counts --gravity 9.81744 -o xsens.json\n"
+      "  mpcal calibrate six_poses.csv --model bias-scale-6 --latitude 49.6 --height 300");
+  app->callback([flags] { Run(*flags); });
+}
+
+}  // namespace mpcal::cli

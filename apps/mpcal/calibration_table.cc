@@ -1,0 +1,86 @@
+#include "calibration_table.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include <fmt/format.h>
+
+namespace mpcal::cli {
+namespace {
+
+struct Row {
+  const char* label;
+  const char* unit;
+  double per_si;  // display units per SI unit
+};
+
+// The packed order of kParameterNames.
+constexpr Row kRows[9] = {
+    {"bias x", "mg", 1e3 / kStandardGravityMps2},
+    {"bias y", "mg", 1e3 / kStandardGravityMps2},
+    {"bias z", "mg", 1e3 / kStandardGravityMps2},
+    {"scale-factor error x", "ppm", 1e6},
+    {"scale-factor error y", "ppm", 1e6},
+    {"scale-factor error z", "ppm", 1e6},
+    {"non-orthogonality yz", "mrad", 1e3},
+    {"non-orthogonality zx", "mrad", 1e3},
+    {"non-orthogonality zy", "mrad", 1e3},
+};
+
+}  // namespace
+
+std::string FormatParameterTable(const Calibration& calibration,
+                                 const std::vector<ExtraColumn>& extra) {
+  const auto value = ToVector(calibration.model);
+  const std::optional<Eigen::Matrix<double, 9, 1>> sigma =
+      calibration.std ? std::optional(ToVector(*calibration.std)) : std::nullopt;
+  const int rows = ParameterCount(calibration.model_kind);
+  std::string out = fmt::format("{:<22} {:>12} {:>10}", "parameter", "estimate", "±1σ");
+  for (const auto& column : extra) out += fmt::format(" {:>12}", column.title);
+  out += fmt::format("  {:<5} {:>22}\n", "unit", "(bias in m/s2)");
+  for (int i = 0; i < rows; ++i) {
+    const Row& r = kRows[i];
+    out += fmt::format("{:<22} {:>12.3f} {:>10}", r.label, value[i] * r.per_si,
+                       sigma ? fmt::format("{:.3f}", (*sigma)[i] * r.per_si) : "-");
+    for (const auto& column : extra) {
+      out += fmt::format(" {:>12.3f}", column.values_si[i] * r.per_si);
+    }
+    out += fmt::format("  {:<5}", r.unit);
+    if (i < 3) {
+      out += sigma ? fmt::format(" {:>10.5f} ± {:.5f}", value[i], (*sigma)[i])
+                   : fmt::format(" {:>10.5f}", value[i]);
+    }
+    out += "\n";
+  }
+  if (calibration.input_units == AccelUnits::kCounts) {
+    out += fmt::format("readings in counts, scaled by the nominal {:.6g} m/s2 per count "
+                       "(bias x, y, z = {:.1f}, {:.1f}, {:.1f} counts)\n",
+                       calibration.mps2_per_unit,
+                       calibration.model.bias_mps2.x() / calibration.mps2_per_unit,
+                       calibration.model.bias_mps2.y() / calibration.mps2_per_unit,
+                       calibration.model.bias_mps2.z() / calibration.mps2_per_unit);
+  }
+  return out;
+}
+
+std::string FormatFitSummary(const CalibrateResult& result) {
+  const auto& d = result.detection;
+  const auto& s = result.solve;
+  std::string out = fmt::format(
+      "static positions: {} used", result.positions.size());
+  if (d.dropped_short > 0) out += fmt::format(", {} too short dropped", d.dropped_short);
+  if (d.merged > 0) out += fmt::format(", {} merged across a bump", d.merged);
+  out += fmt::format("\nfit: {} after {} iterations; |a|-g RMS over the positions {:.4f} m/s2 "
+                     "before, {:.6f} m/s2 after; variance factor {:.3g}\n",
+                     ToString(s.status), s.iterations, s.residual_rms_before_mps2,
+                     s.residual_rms_after_mps2, s.variance_factor);
+  if (!s.converged()) out += fmt::format("solver: {}\n", s.message);
+  return out;
+}
+
+void PrintWarnings(const std::vector<std::string>& warnings) {
+  std::fflush(stdout);
+  for (const auto& w : warnings) fmt::print(stderr, "mpcal: warning: {}\n", w);
+}
+
+}  // namespace mpcal::cli

@@ -1,0 +1,144 @@
+// A whole calibration from a recording: detection, units, solve, packaging.
+#include "mpcal/calibrate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "mpcal/error.h"
+#include "sphere_fit.h"
+
+namespace mpcal {
+namespace {
+
+// The magnitude of a static mean in m/s² may differ from g by the sensor's
+// own errors (consumer parts: up to ~0.5 g of bias and 10 % of scale); far
+// outside this band the units are wrong, not the sensor.
+constexpr double kPlausibleRestRatioLow = 0.5;
+constexpr double kPlausibleRestRatioHigh = 1.6;
+
+double MedianMagnitude(const std::vector<PositionObservation>& positions) {
+  std::vector<double> m;
+  for (const auto& p : positions) m.push_back(p.mean_mps2.norm());
+  std::nth_element(m.begin(), m.begin() + m.size() / 2, m.end());
+  return m[m.size() / 2];
+}
+
+// Catches a log in one unit read as another, from the magnitude at rest.
+void CheckUnits(const std::vector<PositionObservation>& positions, AccelUnits units,
+                double gravity_mps2, const std::string& source) {
+  const double ratio = MedianMagnitude(positions) / gravity_mps2;
+  if (ratio >= kPlausibleRestRatioLow && ratio <= kPlausibleRestRatioHigh) return;
+  const double as_read = ratio * gravity_mps2 / *FixedMps2PerUnit(units);
+  std::string hint = "check --units and --columns";
+  const double g_if_mps2 = ratio * gravity_mps2 / kStandardGravityMps2;
+  if (units == AccelUnits::kMps2 && std::abs(as_read - 1.0) < 0.5) {
+    hint = "the readings look like g: add --units g";
+  } else if (units == AccelUnits::kG && std::abs(as_read / kStandardGravityMps2 - 1.0) < 0.5) {
+    hint = "the readings look like m/s2: use --units mps2";
+  } else if (g_if_mps2 > 20.0) {
+    hint = "the readings look like raw ADC counts: add --units counts";
+  }
+  throw Error(fmt::format(
+      "{}: the static positions read {:.4g} {} in magnitude, but gravity is {:.5g} m/s2 "
+      "({:.4g} {}); {}",
+      source, as_read, ToString(units), gravity_mps2,
+      gravity_mps2 / *FixedMps2PerUnit(units), ToString(units), hint));
+}
+
+}  // namespace
+
+std::string CalibrateOptions::Validate() const {
+  if (std::string p = detect.Validate(); !p.empty()) return "detect: " + p;
+  if (std::string p = solve.Validate(); !p.empty()) return "solve: " + p;
+  return "";
+}
+
+CalibrateResult CalibrateRecording(const Recording& recording,
+                                   const CalibrateOptions& options) {
+  if (const std::string problem = options.Validate(); !problem.empty()) {
+    throw Error("calibration options: " + problem);
+  }
+  CalibrateResult result;
+  result.detection = DetectStatic(recording, options.detect);
+  const auto& intervals = result.detection.intervals;
+  const int needed = ParameterCount(options.solve.model) + 1;
+  if (static_cast<int>(intervals.size()) < needed) {
+    throw Error(fmt::format(
+        "{}: found {} static positions, the {} model needs at least {} (more than 18 "
+        "spanning the sphere for reliable results){}; run 'mpcal detect {}' to see what "
+        "was found and what to record",
+        recording.source, intervals.size(), ToString(options.solve.model), needed,
+        result.detection.dropped_short > 0
+            ? fmt::format("; {} still stretches were shorter than --min-static {} s",
+                          result.detection.dropped_short, options.detect.min_static_s)
+            : "",
+        recording.source));
+  }
+
+  // Raw counts: the nominal scale is the radius of the sphere the position
+  // means lie on, so that the model's scale-factor errors stay small numbers
+  // and the six-position initialisation works as for any other unit.
+  if (const auto fixed = FixedMps2PerUnit(recording.units)) {
+    result.mps2_per_unit = *fixed;
+  } else {
+    std::vector<Eigen::Vector3d> means;
+    for (const auto& in : intervals) means.push_back(in.mean);
+    const internal::Sphere sphere = internal::FitSphere(means);
+    if (!(sphere.radius > 0.0)) {
+      throw Error(fmt::format("{}: the static positions all read the same counts; the "
+                              "sensor did not change orientation",
+                              recording.source));
+    }
+    result.mps2_per_unit = options.solve.gravity_mps2 / sphere.radius;
+  }
+
+  for (const auto& in : intervals) {
+    PositionObservation p;
+    p.mean_mps2 = in.mean * result.mps2_per_unit;
+    p.sample_std_mps2 = in.std * result.mps2_per_unit;
+    p.samples = in.samples();
+    p.start_s = in.start_s;
+    p.end_s = in.end_s;
+    result.positions.push_back(p);
+  }
+  if (recording.units != AccelUnits::kCounts) {
+    CheckUnits(result.positions, recording.units, options.solve.gravity_mps2, recording.source);
+  }
+
+  result.solve = Solve(result.positions, options.solve);
+  result.warnings = result.solve.warnings;
+
+  Calibration& c = result.calibration;
+  c.model_kind = options.solve.model;
+  c.gravity_mps2 = options.solve.gravity_mps2;
+  c.input_units = recording.units;
+  c.mps2_per_unit = result.mps2_per_unit;
+  c.model = result.solve.estimate;
+  c.std = result.solve.std;
+  FitSummary fit;
+  fit.positions = static_cast<int>(result.positions.size());
+  fit.residual_rms_before_mps2 = result.solve.residual_rms_before_mps2;
+  fit.residual_rms_after_mps2 = result.solve.residual_rms_after_mps2;
+  fit.iterations = result.solve.iterations;
+  fit.converged = result.solve.converged();
+  fit.variance_factor = result.solve.variance_factor;
+  c.fit = fit;
+  for (std::size_t k = 0; k < result.positions.size(); ++k) {
+    PositionSummary s;
+    s.start_s = result.positions[k].start_s;
+    s.end_s = result.positions[k].end_s;
+    s.samples = result.positions[k].samples;
+    s.mean_mps2 = result.positions[k].mean_mps2;
+    s.sample_std_mps2 = result.positions[k].sample_std_mps2;
+    s.residual_before_mps2 = result.solve.residual_before_mps2[k];
+    s.residual_after_mps2 = result.solve.residual_after_mps2[k];
+    c.positions.push_back(s);
+  }
+  c.warnings = result.warnings;
+  return result;
+}
+
+}  // namespace mpcal

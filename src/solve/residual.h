@@ -1,0 +1,39 @@
+// The residual of one static position, eq 11 of Souza & Machado (2016) in the
+// |a| − g form METHOD.md §3 recommends (same minimiser, better scaling),
+// whitened by its standard deviation so that every position counts by its
+// precision.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "mpcal/model.h"
+
+namespace mpcal::internal {
+
+struct MagnitudeResidual {
+  MagnitudeResidual(const Eigen::Vector3d& mean_mps2, double gravity_mps2,
+                    double sigma_mps2)
+      : mean_mps2_(mean_mps2), gravity_mps2_(gravity_mps2), sigma_mps2_(sigma_mps2) {}
+
+  /// Parameter blocks as the problem holds them: bias (3), scale-factor
+  /// error (3), non-orthogonality angles θyz, θzx, θzy (3).
+  template <typename T>
+  bool operator()(const T* bias, const T* scale, const T* angles, T* residual) const {
+    ErrorModelT<T> m;
+    m.bias_mps2 = Eigen::Map<const Eigen::Matrix<T, 3, 1>>(bias);
+    m.scale_factor_error = Eigen::Map<const Eigen::Matrix<T, 3, 1>>(scale);
+    m.theta_yz_rad = angles[0];
+    m.theta_zx_rad = angles[1];
+    m.theta_zy_rad = angles[2];
+    const Eigen::Matrix<T, 3, 1> a = m.Correct(mean_mps2_.cast<T>());
+    residual[0] = (a.norm() - T(gravity_mps2_)) / T(sigma_mps2_);
+    return true;
+  }
+
+ private:
+  Eigen::Vector3d mean_mps2_;
+  double gravity_mps2_;
+  double sigma_mps2_;
+};
+
+}  // namespace mpcal::internal

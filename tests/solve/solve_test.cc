@@ -1,0 +1,167 @@
+#include "mpcal/solve.h"
+
+#include <cmath>
+#include <random>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "mpcal/cramer_rao.h"
+#include "mpcal/error.h"
+#include "synthetic_positions.h"
+
+namespace mpcal {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::ConsumerGrade;
+using testing::CubeDirections;
+using testing::kTestGravityMps2;
+using testing::MakeSession;
+using testing::Tilted;
+
+constexpr double kNoiseFreeTolerance = 1e-8;  // packed parameters, noise-free means
+const Eigen::Vector3d kNoise(0.02, 0.025, 0.03);  // m/s² per sample
+constexpr std::size_t kSamples = 1000;
+
+TEST(SolveOptions, DefaultsAreValid) { EXPECT_EQ(SolveOptions{}.Validate(), ""); }
+
+TEST(InitialiseSixPosition, IsExactForAxisAlignedPositionsWithoutAngles) {
+  ErrorModel truth = ConsumerGrade();
+  truth.theta_yz_rad = truth.theta_zx_rad = truth.theta_zy_rad = 0.0;
+  std::mt19937_64 rng(1);
+  std::vector<Eigen::Vector3d> axes;
+  for (int i = 0; i < 3; ++i) {
+    axes.push_back(Eigen::Vector3d::Unit(i));
+    axes.push_back(-Eigen::Vector3d::Unit(i));
+  }
+  const auto session = MakeSession(truth, axes, Eigen::Vector3d::Constant(1e-12), 1, rng);
+  const ErrorModel init = InitialiseSixPosition(session.positions, kTestGravityMps2);
+  EXPECT_LT((init.bias_mps2 - truth.bias_mps2).norm(), 1e-9);
+  EXPECT_LT((init.scale_factor_error - truth.scale_factor_error).norm(), 1e-9);
+}
+
+TEST(Solve, RecoversConsumerGradeErrorsExactlyWithoutNoise) {
+  std::mt19937_64 rng(2);
+  const ErrorModel truth = ConsumerGrade();
+  const auto session = MakeSession(truth, Tilted(CubeDirections(), 0.1, rng),
+                                   Eigen::Vector3d::Constant(1e-9), 1, rng);
+  const SolveResult r = Solve(session.positions, SolveOptions{});
+  ASSERT_TRUE(r.converged()) << r.message;
+  EXPECT_LT((ToVector(r.estimate) - ToVector(truth)).cwiseAbs().maxCoeff(),
+            kNoiseFreeTolerance);
+  EXPECT_LT(r.residual_rms_after_mps2, 1e-8);
+  EXPECT_GT(r.residual_rms_before_mps2, 0.5);
+}
+
+// The estimator reaches the Cramér-Rao bound (METHOD.md §3): over many
+// sessions the errors, divided by the bound's 1σ, have RMS 1, and the 1σ the
+// solver reports matches the bound.
+TEST(Solve, ReachesTheCramerRaoBound) {
+  constexpr int kSessions = 150;
+  std::mt19937_64 rng(3);
+  const ErrorModel truth = ConsumerGrade();
+  double sum_squared_ratio = 0.0;
+  Eigen::Matrix<double, 9, 1> reported_over_bound = Eigen::Matrix<double, 9, 1>::Zero();
+  for (int s = 0; s < kSessions; ++s) {
+    const auto session =
+        MakeSession(truth, Tilted(CubeDirections(), 0.1, rng), kNoise, kSamples, rng);
+    const SolveResult r = Solve(session.positions, SolveOptions{});
+    ASSERT_TRUE(r.converged());
+    const Eigen::Matrix<double, 9, 1> bound =
+        CramerRaoBound(truth, session.bound_positions, kTestGravityMps2).diagonal().cwiseSqrt();
+    const Eigen::Matrix<double, 9, 1> ratio =
+        (ToVector(r.estimate) - ToVector(truth)).cwiseQuotient(bound);
+    sum_squared_ratio += ratio.squaredNorm();
+    reported_over_bound += ToVector(r.std).cwiseQuotient(bound);
+  }
+  // 1350 normalised errors: the RMS of a unit normal scatters by ~2 %.
+  const double rms_ratio = std::sqrt(sum_squared_ratio / (9.0 * kSessions));
+  EXPECT_GT(rms_ratio, 0.9);
+  EXPECT_LT(rms_ratio, 1.15);
+  reported_over_bound /= kSessions;
+  for (int i = 0; i < 9; ++i) {
+    EXPECT_NEAR(reported_over_bound[i], 1.0, 0.1) << kParameterNames[i];
+  }
+}
+
+TEST(Solve, SixParameterModelHoldsTheAnglesAtZero) {
+  std::mt19937_64 rng(4);
+  ErrorModel truth = ConsumerGrade();
+  truth.theta_yz_rad = truth.theta_zx_rad = truth.theta_zy_rad = 0.0;
+  const auto session =
+      MakeSession(truth, Tilted(CubeDirections(), 0.1, rng), kNoise, kSamples, rng);
+  SolveOptions options;
+  options.model = ModelKind::kBiasScale6;
+  const SolveResult r = Solve(session.positions, options);
+  ASSERT_TRUE(r.converged());
+  EXPECT_EQ(r.estimate.theta_yz_rad, 0.0);
+  EXPECT_EQ(r.std.theta_zy_rad, 0.0);
+  const auto bound = CramerRaoBound(truth, session.bound_positions, kTestGravityMps2,
+                                    ModelKind::kBiasScale6);
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_LT(std::abs(ToVector(r.estimate)[i] - ToVector(truth)[i]),
+              5.0 * std::sqrt(bound(i, i)))
+        << kParameterNames[i];
+  }
+}
+
+TEST(Solve, RefusesTooFewPositionsAndSuggestsTheSixParameterModel) {
+  std::mt19937_64 rng(5);
+  auto directions = CubeDirections();
+  directions.resize(8);
+  const auto session = MakeSession(ConsumerGrade(), directions, kNoise, kSamples, rng);
+  try {
+    Solve(session.positions, SolveOptions{});
+    FAIL() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("8 static positions are too few"));
+    EXPECT_THAT(e.what(), HasSubstr("--model bias-scale-6"));
+  }
+}
+
+TEST(Solve, NamesTheParametersThatCoplanarPositionsLeaveUndetermined) {
+  // Every direction in the x-y plane: nothing can tell bias z from the rest.
+  std::mt19937_64 rng(6);
+  std::vector<Eigen::Vector3d> planar;
+  for (int k = 0; k < 16; ++k) {
+    const double a = 2.0 * M_PI * k / 16.0;
+    planar.emplace_back(std::cos(a), std::sin(a), 0.0);
+  }
+  ErrorModel truth = ConsumerGrade();
+  const auto session = MakeSession(truth, planar, kNoise, kSamples, rng);
+  try {
+    Solve(session.positions, SolveOptions{});
+    FAIL() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("do not determine"));
+    EXPECT_THAT(e.what(), HasSubstr("scale_factor_error_z"));
+  }
+}
+
+TEST(Solve, RejectsNonFiniteMeans) {
+  std::mt19937_64 rng(7);
+  auto session = MakeSession(ConsumerGrade(), CubeDirections(), kNoise, kSamples, rng);
+  session.positions[3].mean_mps2.y() = std::nan("");
+  EXPECT_THROW(Solve(session.positions, SolveOptions{}), Error);
+}
+
+TEST(CramerRaoBound, ShrinksAsOneOverTheNumberOfSamples) {
+  const ErrorModel truth = ConsumerGrade();
+  std::vector<BoundPosition> a, b;
+  for (const auto& u : CubeDirections()) {
+    a.push_back({u, kNoise, 1000});
+    b.push_back({u, kNoise, 4000});
+  }
+  const auto ca = CramerRaoBound(truth, a, kTestGravityMps2);
+  const auto cb = CramerRaoBound(truth, b, kTestGravityMps2);
+  EXPECT_LT((ca - 4.0 * cb).norm(), 1e-9 * ca.norm());
+}
+
+TEST(CramerRaoBound, RefusesPositionsThatDetermineNothing) {
+  std::vector<BoundPosition> same(12, {Eigen::Vector3d::UnitZ(), kNoise, 100});
+  EXPECT_THROW(CramerRaoBound(ErrorModel{}, same, kTestGravityMps2), Error);
+}
+
+}  // namespace
+}  // namespace mpcal
