@@ -39,6 +39,14 @@ struct SolveOptions {
   RobustLoss robust = RobustLoss::kNone;
   /// Iteration cap of the Levenberg-Marquardt solver.
   int max_iterations = 100;
+  /// Exclude positions whose deleted residual (the residual a fit without
+  /// them predicts, against that position's own noise level) exceeds
+  /// `outlier_threshold` robust standard deviations, one at a time, at most
+  /// a fifth of the positions. Turn off to keep every position.
+  bool exclude_outliers = true;
+  double outlier_threshold = 5.0;
+  /// Leave-one-position-out cross-validation (K extra small fits).
+  bool cross_validate = true;
 
   /// Empty string when valid, otherwise names the first bad field.
   std::string Validate() const;
@@ -57,12 +65,21 @@ struct SolveResult {
   /// parameters held fixed (angles of kBiasScale6) are zero.
   Eigen::Matrix<double, 9, 9> covariance = Eigen::Matrix<double, 9, 9>::Zero();
   ErrorModel std;  ///< square roots of the covariance diagonal
-  /// |a_k| − g per position (m/s²) at the initial (raw: identity) model and
-  /// at the estimate.
+  /// |a_k| − g per position (m/s²) with the raw readings (identity model) and
+  /// at the estimate, for every position given, used or not; the RMS is over
+  /// the used ones.
   std::vector<double> residual_before_mps2;
   std::vector<double> residual_after_mps2;
   double residual_rms_before_mps2 = 0.0;
   double residual_rms_after_mps2 = 0.0;
+  /// Residual of each position predicted by the fit without it (m/s²); empty
+  /// when cross-validation is off.
+  std::vector<double> cross_validation_residual_mps2;
+  double cross_validation_rms_mps2 = 0.0;
+  /// Whether each position was used; false for excluded outliers.
+  std::vector<bool> used;
+  /// Each position's deleted residual in units of its noise level.
+  std::vector<double> standardised_residual;
   /// χ² of the whitened residuals over degrees of freedom.
   double variance_factor = 0.0;
   double final_cost = 0.0;

@@ -125,6 +125,12 @@ CalibrateResult CalibrateRecording(const Recording& recording,
   fit.iterations = result.solve.iterations;
   fit.converged = result.solve.converged();
   fit.variance_factor = result.solve.variance_factor;
+  fit.excluded_positions =
+      static_cast<int>(std::count(result.solve.used.begin(), result.solve.used.end(), false));
+  fit.positions -= fit.excluded_positions;
+  if (!result.solve.cross_validation_residual_mps2.empty()) {
+    fit.cross_validation_rms_mps2 = result.solve.cross_validation_rms_mps2;
+  }
   c.fit = fit;
   for (std::size_t k = 0; k < result.positions.size(); ++k) {
     PositionSummary s;
@@ -135,6 +141,10 @@ CalibrateResult CalibrateRecording(const Recording& recording,
     s.sample_std_mps2 = result.positions[k].sample_std_mps2;
     s.residual_before_mps2 = result.solve.residual_before_mps2[k];
     s.residual_after_mps2 = result.solve.residual_after_mps2[k];
+    s.used = result.solve.used[k];
+    if (!result.solve.cross_validation_residual_mps2.empty()) {
+      s.cross_validation_residual_mps2 = result.solve.cross_validation_residual_mps2[k];
+    }
     c.positions.push_back(s);
   }
   c.warnings = result.warnings;

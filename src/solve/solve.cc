@@ -1,4 +1,5 @@
-// The multi-position least squares (Souza & Machado 2016, eq 12) with Ceres.
+// The multi-position least squares (Souza & Machado 2016, eq 12) with Ceres,
+// with outlier positions excluded and every position cross-validated.
 #include "mpcal/solve.h"
 
 #include <algorithm>
@@ -7,6 +8,7 @@
 
 #include <ceres/ceres.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "mpcal/error.h"
 #include "observability.h"
@@ -31,6 +33,10 @@ constexpr double kCauchyTuning = 2.385;
 // Consistency factor of the median absolute deviation for Gaussian data.
 constexpr double kMadToSigma = 1.4826;
 
+// At most this share of the positions is excluded as outliers: beyond it the
+// session itself is bad, and hiding that would mislead.
+constexpr double kMaxOutlierShare = 0.2;
+
 struct Blocks {
   double bias[3];
   double scale[3];
@@ -52,19 +58,28 @@ struct Blocks {
   }
 };
 
+double Magnitude(const ErrorModel& model, const PositionObservation& p, double gravity_mps2) {
+  return model.Correct(p.mean_mps2).norm() - gravity_mps2;
+}
+
 std::vector<double> MagnitudeResiduals(const ErrorModel& model,
                                        std::span<const PositionObservation> positions,
                                        double gravity_mps2) {
   std::vector<double> r;
   r.reserve(positions.size());
-  for (const auto& p : positions) r.push_back(model.Correct(p.mean_mps2).norm() - gravity_mps2);
+  for (const auto& p : positions) r.push_back(Magnitude(model, p, gravity_mps2));
   return r;
 }
 
-double Rms(const std::vector<double>& v) {
+double Rms(const std::vector<double>& v, const std::vector<bool>& used) {
   double sum = 0.0;
-  for (double x : v) sum += x * x;
-  return v.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(v.size()));
+  int n = 0;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    if (!used[k]) continue;
+    sum += v[k] * v[k];
+    ++n;
+  }
+  return n == 0 ? 0.0 : std::sqrt(sum / n);
 }
 
 double Median(std::vector<double> v) {
@@ -84,20 +99,10 @@ ceres::LossFunction* MakeLoss(RobustLoss loss, double scale) {
   return nullptr;
 }
 
-// The weighted least-squares problem over `blocks`.
-std::unique_ptr<ceres::Problem> BuildProblem(std::span<const PositionObservation> positions,
-                                             const std::vector<double>& sigmas,
-                                             const SolveOptions& options, double loss_scale,
-                                             Blocks& blocks) {
-  auto problem = std::make_unique<ceres::Problem>();
-  for (std::size_t k = 0; k < positions.size(); ++k) {
-    auto* cost = new ceres::AutoDiffCostFunction<MagnitudeResidual, 1, 3, 3, 3>(
-        new MagnitudeResidual(positions[k].mean_mps2, options.gravity_mps2, sigmas[k]));
-    problem->AddResidualBlock(cost, MakeLoss(options.robust, loss_scale), blocks.bias,
-                              blocks.scale, blocks.angles);
-  }
-  if (options.model == ModelKind::kBiasScale6) problem->SetParameterBlockConstant(blocks.angles);
-  return problem;
+std::vector<std::string> EstimatedNames(ModelKind model) {
+  std::vector<std::string> names;
+  for (int i = 0; i < ParameterCount(model); ++i) names.emplace_back(kParameterNames[i]);
+  return names;
 }
 
 ceres::Solver::Summary RunSolver(const SolveOptions& options, ceres::Problem& problem) {
@@ -114,32 +119,186 @@ ceres::Solver::Summary RunSolver(const SolveOptions& options, ceres::Problem& pr
   return summary;
 }
 
-// The estimated parameter blocks, in packed order.
-std::vector<double*> EstimatedBlocks(ModelKind model, Blocks& blocks) {
-  std::vector<double*> b = {blocks.bias, blocks.scale};
-  if (model == ModelKind::kShinElSheimy9) b.push_back(blocks.angles);
-  return b;
-}
+// The positions one fit uses, with the noise of each made safe to weigh by.
+struct FitInput {
+  std::vector<std::size_t> index;  // into the caller's positions
+  std::vector<PositionObservation> positions;
+  std::vector<Eigen::Vector3d> noise;
+};
 
-// Whitened residuals × estimated parameters, at the blocks' current values.
-Eigen::MatrixXd Jacobian(ceres::Problem& problem, const std::vector<double*>& estimated) {
-  ceres::Problem::EvaluateOptions eval;
-  eval.parameter_blocks = estimated;
-  ceres::CRSMatrix crs;
-  problem.Evaluate(eval, nullptr, nullptr, nullptr, &crs);
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
-  for (int row = 0; row < crs.num_rows; ++row) {
-    for (int i = crs.rows[row]; i < crs.rows[row + 1]; ++i) {
-      jacobian(row, crs.cols[i]) = crs.values[i];
+// One weighted least-squares fit and the state the covariance, the
+// observability check and cross-validation need afterwards.
+class Fit {
+ public:
+  Fit(const FitInput& input, const ErrorModel& start, const SolveOptions& options)
+      : input_(input), options_(options), blocks_(start) {}
+
+  // Two passes: the weights depend (weakly) on the parameters, so the second
+  // weighs each position at the first estimate. A robust loss, when asked
+  // for, enters in the second pass, scaled to the whitened residuals of the
+  // first so that it reacts to outliers and not to the overall noise level.
+  //
+  // Throws mpcal::Error when the positions leave parameters undetermined:
+  // asked before solving, since a solver let loose on an undetermined
+  // problem wanders off, and the Jacobian where it stops says nothing.
+  void Run() {
+    sigmas_ = Sigmas(blocks_.Model());
+    Build(RobustLoss::kNone);
+    const internal::Observability obs =
+        internal::AnalyseObservability(Jacobian(), EstimatedNames(options_.model));
+    if (!obs.undetermined.empty()) {
+      throw Error(fmt::format(
+          "the {} static positions do not determine {}: their orientations do not span "
+          "the sphere; record more positions, with each axis pointing up and down and "
+          "at the cube's edges and corners (run 'mpcal detect' to see the coverage)",
+          input_.positions.size(), fmt::join(obs.undetermined, ", ")));
+    }
+    summary_ = RunSolver(options_, *problem_);
+    iterations_ = static_cast<int>(summary_.iterations.size()) - 1;
+
+    sigmas_ = Sigmas(blocks_.Model());
+    std::vector<double> whitened_abs;
+    for (std::size_t k = 0; k < input_.positions.size(); ++k) {
+      whitened_abs.push_back(std::abs(Residual(k) / sigmas_[k]));
+    }
+    loss_scale_ = std::max(kMadToSigma * Median(whitened_abs), 1e-12);
+    Build(options_.robust);
+    summary_ = RunSolver(options_, *problem_);
+    iterations_ += static_cast<int>(summary_.iterations.size()) - 1;
+  }
+
+  // |a| − g of position k at the fit's estimate, or predicted by a refit
+  // without it (one pass from this estimate, with the same weights).
+  double Residual(std::size_t k) const {
+    return Magnitude(blocks_.Model(), input_.positions[k], options_.gravity_mps2);
+  }
+  double PredictedWithout(std::size_t k) const {
+    FitInput rest;
+    std::vector<double> sigmas;
+    for (std::size_t j = 0; j < input_.positions.size(); ++j) {
+      if (j == k) continue;
+      rest.positions.push_back(input_.positions[j]);
+      sigmas.push_back(sigmas_[j]);
+    }
+    Blocks blocks = blocks_;
+    ceres::Problem problem;
+    AddResiduals(rest.positions, sigmas, options_.robust, blocks, problem);
+    RunSolver(options_, problem);
+    return Magnitude(blocks.Model(), input_.positions[k], options_.gravity_mps2);
+  }
+
+  // Whitened residuals × estimated parameters at the current estimate.
+  Eigen::MatrixXd Jacobian() {
+    ceres::Problem::EvaluateOptions eval;
+    eval.parameter_blocks = Estimated();
+    ceres::CRSMatrix crs;
+    problem_->Evaluate(eval, nullptr, nullptr, nullptr, &crs);
+    Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+    for (int row = 0; row < crs.num_rows; ++row) {
+      for (int i = crs.rows[row]; i < crs.rows[row + 1]; ++i) {
+        jacobian(row, crs.cols[i]) = crs.values[i];
+      }
+    }
+    return jacobian;
+  }
+
+  // (JᵀJ)⁻¹ of the whitened problem, by Ceres; p × p in packed order.
+  Eigen::MatrixXd UnscaledCovariance() {
+    ceres::Covariance::Options cov_options;
+    // Dense SVD: the problem is 9 × K, and SVD still answers near rank loss.
+    cov_options.algorithm_type = ceres::DENSE_SVD;
+    cov_options.null_space_rank = -1;
+    ceres::Covariance covariance(cov_options);
+    const std::vector<double*> estimated = Estimated();
+    const std::vector<const double*> blocks(estimated.begin(), estimated.end());
+    if (!covariance.Compute(blocks, problem_.get())) {
+      throw Error(fmt::format("the covariance of the fit over {} static positions could "
+                              "not be computed: they do not determine the parameters; "
+                              "record more orientations",
+                              input_.positions.size()));
+    }
+    const int p = ParameterCount(options_.model);
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> c(p, p);
+    covariance.GetCovarianceMatrix(blocks, c.data());
+    return c;
+  }
+
+  ErrorModel Estimate() const { return blocks_.Model(); }
+  const std::vector<double>& sigmas() const { return sigmas_; }
+  const ceres::Solver::Summary& summary() const { return summary_; }
+  int iterations() const { return iterations_; }
+
+ private:
+  std::vector<double> Sigmas(const ErrorModel& m) const {
+    std::vector<double> s;
+    for (std::size_t k = 0; k < input_.positions.size(); ++k) {
+      s.push_back(internal::ResidualSigma(m, input_.positions[k].mean_mps2, input_.noise[k],
+                                          input_.positions[k].samples));
+    }
+    return s;
+  }
+
+  void AddResiduals(const std::vector<PositionObservation>& positions,
+                    const std::vector<double>& sigmas, RobustLoss loss, Blocks& blocks,
+                    ceres::Problem& problem) const {
+    for (std::size_t k = 0; k < positions.size(); ++k) {
+      auto* cost = new ceres::AutoDiffCostFunction<MagnitudeResidual, 1, 3, 3, 3>(
+          new MagnitudeResidual(positions[k].mean_mps2, options_.gravity_mps2, sigmas[k]));
+      problem.AddResidualBlock(cost, MakeLoss(loss, loss_scale_), blocks.bias, blocks.scale,
+                               blocks.angles);
+    }
+    if (options_.model == ModelKind::kBiasScale6) {
+      problem.SetParameterBlockConstant(blocks.angles);
     }
   }
-  return jacobian;
+
+  void Build(RobustLoss loss) {
+    problem_ = std::make_unique<ceres::Problem>();
+    AddResiduals(input_.positions, sigmas_, loss, blocks_, *problem_);
+  }
+
+  // Ceres names parameter blocks by their address.
+  std::vector<double*> Estimated() {
+    std::vector<double*> blocks = {blocks_.bias, blocks_.scale};
+    if (options_.model == ModelKind::kShinElSheimy9) blocks.push_back(blocks_.angles);
+    return blocks;
+  }
+
+  FitInput input_;
+  SolveOptions options_;
+  Blocks blocks_;
+  std::vector<double> sigmas_;
+  double loss_scale_ = 1.0;
+  std::unique_ptr<ceres::Problem> problem_;
+  ceres::Solver::Summary summary_;
+  int iterations_ = 0;
+};
+
+FitInput Select(std::span<const PositionObservation> positions,
+                const std::vector<Eigen::Vector3d>& noise, const std::vector<bool>& used) {
+  FitInput in;
+  for (std::size_t k = 0; k < positions.size(); ++k) {
+    if (!used[k]) continue;
+    in.index.push_back(k);
+    in.positions.push_back(positions[k]);
+    in.noise.push_back(noise[k]);
+  }
+  return in;
 }
 
-std::vector<std::string> EstimatedNames(ModelKind model) {
-  std::vector<std::string> names;
-  for (int i = 0; i < ParameterCount(model); ++i) names.emplace_back(kParameterNames[i]);
-  return names;
+// Each used position's residual in units of its own noise level, corrected
+// for the pull it has on the fit (leverage h: var(e_k) = σ_k² (1 − h_k)).
+std::vector<double> Standardised(Fit& fit, std::size_t count) {
+  const Eigen::MatrixXd j = fit.Jacobian();
+  const Eigen::MatrixXd hat =
+      j * (j.transpose() * j).ldlt().solve(j.transpose());
+  std::vector<double> z(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const double h = std::clamp(hat(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)),
+                                0.0, 0.999);
+    z[k] = fit.Residual(k) / (fit.sigmas()[k] * std::sqrt(1.0 - h));
+  }
+  return z;
 }
 
 }  // namespace
@@ -173,13 +332,15 @@ std::string SolveOptions::Validate() const {
                        gravity_mps2);
   }
   if (max_iterations < 1) return "max_iterations must be at least 1";
+  if (!(outlier_threshold > 1.0)) return "outlier_threshold must be above 1";
   return "";
 }
 
 std::string SolveResult::BriefReport() const {
-  return fmt::format("{} after {} iterations; |a|-g RMS {:.3g} -> {:.3g} m/s2; variance factor {:.3g}",
-                     ToString(status), iterations, residual_rms_before_mps2,
-                     residual_rms_after_mps2, variance_factor);
+  return fmt::format(
+      "{} after {} iterations; |a|-g RMS {:.3g} -> {:.3g} m/s2; variance factor {:.3g}",
+      ToString(status), iterations, residual_rms_before_mps2, residual_rms_after_mps2,
+      variance_factor);
 }
 
 SolveResult Solve(std::span<const PositionObservation> positions,
@@ -188,16 +349,17 @@ SolveResult Solve(std::span<const PositionObservation> positions,
     throw Error("solve options: " + problem);
   }
   const int p = ParameterCount(options.model);
-  if (static_cast<int>(positions.size()) < p + 1) {
+  const std::size_t count = positions.size();
+  if (static_cast<int>(count) < p + 1) {
     throw Error(fmt::format(
         "{} static positions are too few for the {} model ({} parameters): it needs at "
         "least {}, and more than 18 spanning the sphere for reliable results{}",
-        positions.size(), ToString(options.model), p, p + 1,
-        options.model == ModelKind::kShinElSheimy9 && positions.size() >= 6
+        count, ToString(options.model), p, p + 1,
+        options.model == ModelKind::kShinElSheimy9 && count >= 6
             ? "; with the six axis-up/axis-down positions use --model bias-scale-6"
             : ""));
   }
-  for (std::size_t k = 0; k < positions.size(); ++k) {
+  for (std::size_t k = 0; k < count; ++k) {
     if (!positions[k].mean_mps2.allFinite() || !positions[k].sample_std_mps2.allFinite()) {
       throw Error(fmt::format("static position {} (at {:.2f} s) has a non-finite mean", k + 1,
                               positions[k].start_s));
@@ -205,81 +367,76 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   }
 
   SolveResult result;
+  result.used.assign(count, true);
   result.initial = InitialiseSixPosition(positions, options.gravity_mps2);
   result.residual_before_mps2 = MagnitudeResiduals(ErrorModel{}, positions, options.gravity_mps2);
-  result.residual_rms_before_mps2 = Rms(result.residual_before_mps2);
-
   const std::vector<Eigen::Vector3d> noise = internal::UsableNoise(positions);
-  auto sigmas_at = [&](const ErrorModel& m) {
-    std::vector<double> s;
-    s.reserve(positions.size());
-    for (std::size_t k = 0; k < positions.size(); ++k) {
-      s.push_back(internal::ResidualSigma(m, positions[k].mean_mps2, noise[k],
-                                          positions[k].samples));
+
+  auto fit = std::make_unique<Fit>(Select(positions, noise, result.used), result.initial, options);
+  fit->Run();
+  result.iterations = fit->iterations();
+
+  // Outliers, worst first, one at a time: a bumped position pulls the fit
+  // towards itself and can hide a second one until it is gone.
+  const int max_excluded = std::min(static_cast<int>(kMaxOutlierShare * count),
+                                    static_cast<int>(count) - (p + 1));
+  int excluded = 0;
+  while (options.exclude_outliers && excluded < max_excluded) {
+    const FitInput in = Select(positions, noise, result.used);
+    const std::vector<double> z = Standardised(*fit, in.positions.size());
+    std::vector<double> abs_z;
+    for (double v : z) abs_z.push_back(std::abs(v));
+    const double scale = std::max(1.0, kMadToSigma * Median(abs_z));
+    const auto worst = std::max_element(abs_z.begin(), abs_z.end()) - abs_z.begin();
+    if (abs_z[worst] <= options.outlier_threshold * scale) break;
+
+    const std::size_t k = in.index[static_cast<std::size_t>(worst)];
+    result.used[k] = false;
+    auto refit = std::make_unique<Fit>(Select(positions, noise, result.used),
+                                       fit->Estimate(), options);
+    try {
+      refit->Run();
+    } catch (const Error&) {
+      // The position is needed to determine the parameters: keep it.
+      result.used[k] = true;
+      result.warnings.push_back(fmt::format(
+          "position {} ({:.1f}-{:.1f} s) fits badly ({:.1f} times its noise) but cannot "
+          "be excluded: no other position determines the same parameters",
+          k + 1, positions[k].start_s, positions[k].end_s, abs_z[worst]));
+      break;
     }
-    return s;
-  };
-
-  Blocks blocks(result.initial);
-  const std::vector<double*> estimated = EstimatedBlocks(options.model, blocks);
-  std::vector<double> sigmas = sigmas_at(result.initial);
-  SolveOptions first_options = options;
-  first_options.robust = RobustLoss::kNone;
-  std::unique_ptr<ceres::Problem> problem =
-      BuildProblem(positions, sigmas, first_options, 1.0, blocks);
-
-  // Which parameters can these positions determine? Asked before solving: a
-  // solver let loose on an undetermined problem wanders off, and the
-  // Jacobian where it stops says nothing about the design.
-  const internal::Observability obs =
-      internal::AnalyseObservability(Jacobian(*problem, estimated), EstimatedNames(options.model));
-  if (!obs.undetermined.empty()) {
-    throw Error(fmt::format(
-        "the {} static positions do not determine {}: their orientations do not span "
-        "the sphere; record more positions, with each axis pointing up and down and "
-        "at the cube's edges and corners (run 'mpcal detect' to see the coverage)",
-        positions.size(), fmt::join(obs.undetermined, ", ")));
+    result.warnings.push_back(fmt::format(
+        "position {} ({:.1f}-{:.1f} s) excluded as an outlier: its residual is {:.1f} times "
+        "its noise level (was the sensor bumped or not fully still?)",
+        k + 1, positions[k].start_s, positions[k].end_s, abs_z[worst]));
+    fit = std::move(refit);
+    result.iterations += fit->iterations();
+    ++excluded;
   }
 
-  // Two passes: the weights depend (weakly) on the parameters, so the second
-  // weighs each position at the first estimate. A robust loss, when asked
-  // for, enters in the second pass, scaled to the whitened residuals of the
-  // first so that it reacts to outliers and not to the overall noise level.
-  ceres::Solver::Summary summary = RunSolver(options, *problem);
-  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  sigmas = sigmas_at(blocks.Model());
-  std::vector<double> whitened_abs;
-  const std::vector<double> first = MagnitudeResiduals(blocks.Model(), positions, options.gravity_mps2);
-  for (std::size_t k = 0; k < first.size(); ++k) whitened_abs.push_back(std::abs(first[k] / sigmas[k]));
-  const double loss_scale = std::max(kMadToSigma * Median(whitened_abs), 1e-12);
-  problem = BuildProblem(positions, sigmas, options, loss_scale, blocks);
-  summary = RunSolver(options, *problem);
-  result.iterations += static_cast<int>(summary.iterations.size()) - 1;
-
-  result.estimate = blocks.Model();
-  result.final_cost = summary.final_cost;
+  result.estimate = fit->Estimate();
+  result.final_cost = fit->summary().final_cost;
   result.residual_after_mps2 = MagnitudeResiduals(result.estimate, positions, options.gravity_mps2);
-  result.residual_rms_after_mps2 = Rms(result.residual_after_mps2);
+  result.residual_rms_before_mps2 = Rms(result.residual_before_mps2, result.used);
+  result.residual_rms_after_mps2 = Rms(result.residual_after_mps2, result.used);
 
   const bool plausible =
       result.estimate.scale_factor_error.cwiseAbs().maxCoeff() < kMaxPlausibleScaleError &&
       std::max({std::abs(result.estimate.theta_yz_rad), std::abs(result.estimate.theta_zx_rad),
                 std::abs(result.estimate.theta_zy_rad)}) < kMaxPlausibleAngleRad &&
       ToVector(result.estimate).allFinite();
-  if (summary.termination_type == ceres::CONVERGENCE && plausible) {
-    result.status = SolveStatus::kConverged;
-    result.message = summary.message;
-  } else {
+  if (fit->summary().termination_type != ceres::CONVERGENCE || !plausible) {
     result.status = SolveStatus::kNoConvergence;
-    result.message = plausible ? summary.message
+    result.message = plausible ? fit->summary().message
                                : "the estimate left the plausible range (|s| < 0.5, "
                                  "|angle| < 0.5 rad): the solver diverged";
     return result;
   }
+  result.status = SolveStatus::kConverged;
+  result.message = fit->summary().message;
 
   for (const std::string& name :
-       internal::AnalyseObservability(Jacobian(*problem, estimated),
-                                      EstimatedNames(options.model))
+       internal::AnalyseObservability(fit->Jacobian(), EstimatedNames(options.model))
            .poorly_determined) {
     result.warnings.push_back(fmt::format(
         "{} is poorly determined by these positions (strongly correlated with other "
@@ -287,31 +444,29 @@ SolveResult Solve(std::span<const PositionObservation> positions,
         name));
   }
 
+  // Cross-validation: each used position predicted by the fit without it;
+  // an excluded one is already predicted by the final fit, which lacks it.
+  const FitInput in = Select(positions, noise, result.used);
+  const std::vector<double> z = Standardised(*fit, in.positions.size());
+  result.standardised_residual.assign(count, 0.0);
+  for (std::size_t j = 0; j < in.index.size(); ++j) result.standardised_residual[in.index[j]] = z[j];
+  if (options.cross_validate) {
+    result.cross_validation_residual_mps2 = result.residual_after_mps2;
+    for (std::size_t j = 0; j < in.index.size(); ++j) {
+      result.cross_validation_residual_mps2[in.index[j]] = fit->PredictedWithout(j);
+    }
+    result.cross_validation_rms_mps2 = Rms(result.cross_validation_residual_mps2, result.used);
+  }
+
   // Covariance: (JᵀJ)⁻¹ of the whitened problem, scaled by the a-posteriori
   // variance of unit weight (METHOD.md §3).
   double chi2 = 0.0;
-  for (std::size_t k = 0; k < positions.size(); ++k) {
-    chi2 += std::pow(result.residual_after_mps2[k] / sigmas[k], 2);
+  for (std::size_t j = 0; j < in.index.size(); ++j) {
+    chi2 += std::pow(fit->Residual(j) / fit->sigmas()[j], 2);
   }
-  const int dof = static_cast<int>(positions.size()) - p;
-  result.variance_factor = chi2 / dof;
-  ceres::Covariance::Options cov_options;
-  // Dense SVD: the problem is 9 × K, and SVD still answers near rank loss.
-  cov_options.algorithm_type = ceres::DENSE_SVD;
-  cov_options.null_space_rank = -1;
-  ceres::Covariance covariance(cov_options);
-  const std::vector<const double*> estimated_const(estimated.begin(), estimated.end());
-  if (!covariance.Compute(estimated_const, problem.get())) {
-    throw Error(fmt::format("the covariance of the {} static positions' fit could not be "
-                            "computed: the positions do not determine the parameters; "
-                            "record more orientations",
-                            positions.size()));
-  }
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> unscaled(p, p);
-  covariance.GetCovarianceMatrix(estimated_const, unscaled.data());
-  result.covariance.topLeftCorner(p, p) = result.variance_factor * unscaled;
-  Eigen::Matrix<double, 9, 1> sd = result.covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
-  result.std = FromVector(sd);
+  result.variance_factor = chi2 / (static_cast<double>(in.index.size()) - p);
+  result.covariance.topLeftCorner(p, p) = result.variance_factor * fit->UnscaledCovariance();
+  result.std = FromVector(result.covariance.diagonal().cwiseMax(0.0).cwiseSqrt());
   return result;
 }
 

@@ -61,12 +61,14 @@ TEST(Solve, ReachesTheCramerRaoBound) {
   constexpr int kSessions = 150;
   std::mt19937_64 rng(3);
   const ErrorModel truth = ConsumerGrade();
+  SolveOptions options;
+  options.cross_validate = false;  // does not change the estimate; saves time
   double sum_squared_ratio = 0.0;
   Eigen::Matrix<double, 9, 1> reported_over_bound = Eigen::Matrix<double, 9, 1>::Zero();
   for (int s = 0; s < kSessions; ++s) {
     const auto session =
         MakeSession(truth, Tilted(CubeDirections(), 0.1, rng), kNoise, kSamples, rng);
-    const SolveResult r = Solve(session.positions, SolveOptions{});
+    const SolveResult r = Solve(session.positions, options);
     ASSERT_TRUE(r.converged());
     const Eigen::Matrix<double, 9, 1> bound =
         CramerRaoBound(truth, session.bound_positions, kTestGravityMps2).diagonal().cwiseSqrt();
@@ -144,6 +146,82 @@ TEST(Solve, RejectsNonFiniteMeans) {
   auto session = MakeSession(ConsumerGrade(), CubeDirections(), kNoise, kSamples, rng);
   session.positions[3].mean_mps2.y() = std::nan("");
   EXPECT_THROW(Solve(session.positions, SolveOptions{}), Error);
+}
+
+// A position where the sensor was bumped: 0.05 m/s² off, ~60 times the noise
+// of its mean.
+constexpr double kBumpMps2 = 0.05;
+
+testing::SyntheticSession SessionWithABump(std::mt19937_64& rng, std::size_t bumped) {
+  auto session = MakeSession(ConsumerGrade(), Tilted(CubeDirections(), 0.1, rng), kNoise,
+                             kSamples, rng);
+  session.positions[bumped].mean_mps2 += kBumpMps2 * session.positions[bumped].mean_mps2.normalized();
+  session.positions[bumped].start_s = 120.0;
+  session.positions[bumped].end_s = 130.0;
+  return session;
+}
+
+TEST(Solve, ExcludesABumpedPositionAndNamesIt) {
+  std::mt19937_64 rng(8);
+  const auto session = SessionWithABump(rng, 11);
+  const SolveResult r = Solve(session.positions, SolveOptions{});
+  ASSERT_TRUE(r.converged());
+  EXPECT_FALSE(r.used[11]);
+  EXPECT_EQ(std::count(r.used.begin(), r.used.end(), false), 1);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_THAT(r.warnings[0], HasSubstr("position 12 (120.0-130.0 s) excluded as an outlier"));
+  // Back to an estimate consistent with its own 1σ.
+  const Eigen::Matrix<double, 9, 1> z =
+      (ToVector(r.estimate) - ToVector(ConsumerGrade())).cwiseQuotient(ToVector(r.std));
+  EXPECT_LT(z.cwiseAbs().maxCoeff(), 3.5);
+  // The bumped position is predicted by the fit without it: off by the bump.
+  EXPECT_NEAR(r.cross_validation_residual_mps2[11], kBumpMps2, 0.1 * kBumpMps2);
+}
+
+TEST(Solve, KeepsEveryPositionOfACleanSession) {
+  std::mt19937_64 rng(9);
+  for (int s = 0; s < 20; ++s) {
+    const auto session =
+        MakeSession(ConsumerGrade(), Tilted(CubeDirections(), 0.1, rng), kNoise, kSamples, rng);
+    const SolveResult r = Solve(session.positions, SolveOptions{});
+    EXPECT_EQ(std::count(r.used.begin(), r.used.end(), false), 0);
+  }
+}
+
+TEST(Solve, RobustLossesResistABumpWithoutExcludingIt) {
+  std::mt19937_64 rng(10);
+  const auto session = SessionWithABump(rng, 4);
+  SolveOptions plain;
+  plain.exclude_outliers = false;
+  auto error_with = [&](RobustLoss loss) {
+    SolveOptions o = plain;
+    o.robust = loss;
+    const SolveResult r = Solve(session.positions, o);
+    EXPECT_TRUE(r.converged());
+    EXPECT_TRUE(r.used[4]);
+    // In units of the bound-level 1σ, so that bias and angles weigh alike.
+    return (ToVector(r.estimate) - ToVector(ConsumerGrade()))
+        .cwiseQuotient(ToVector(r.std))
+        .norm();
+  };
+  const double plain_error = error_with(RobustLoss::kNone);
+  // Huber bounds the bump's influence to that of a 1.345σ residual; Cauchy
+  // all but removes it.
+  EXPECT_LT(error_with(RobustLoss::kHuber), 0.5 * plain_error);
+  EXPECT_LT(error_with(RobustLoss::kCauchy), 0.25 * plain_error);
+}
+
+TEST(Solve, CrossValidationResidualsExceedTheFittedOnes) {
+  // A position left out of the fit cannot pull it: its predicted residual is
+  // larger, by about 1/(1 − leverage) ≈ K/(K − 9) on average.
+  std::mt19937_64 rng(12);
+  const auto session =
+      MakeSession(ConsumerGrade(), Tilted(CubeDirections(), 0.1, rng), kNoise, kSamples, rng);
+  const SolveResult r = Solve(session.positions, SolveOptions{});
+  ASSERT_EQ(r.cross_validation_residual_mps2.size(), session.positions.size());
+  const double ratio = r.cross_validation_rms_mps2 / r.residual_rms_after_mps2;
+  EXPECT_GT(ratio, 1.1);
+  EXPECT_LT(ratio, 2.5);
 }
 
 TEST(CramerRaoBound, ShrinksAsOneOverTheNumberOfSamples) {
