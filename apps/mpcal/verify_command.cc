@@ -1,0 +1,263 @@
+// `mpcal verify --imu WALK --gnss REF [--calib CALIB.json] -o RESULT.json`:
+// the paper's field verification (METHOD.md §5): integrate a walk raw and
+// corrected and compare both with a GNSS reference.
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "cli_options.h"
+#include "command.h"
+#include "mpcal/atomic_file.h"
+#include "mpcal/calibration_file.h"
+#include "mpcal/error.h"
+#include "mpcal/gnss.h"
+#include "mpcal/gravity.h"
+#include "mpcal/log_reader.h"
+#include "mpcal/verify.h"
+#include "progress.h"
+
+namespace mpcal::cli {
+namespace {
+
+struct VerifyFlags {
+  std::string imu;
+  std::string gnss;
+  std::string calibration;
+  std::string output;
+  std::string trajectory_prefix;
+  LogOptions log;
+  GnssReadOptions gnss_options;
+  GravityFlags gravity;
+  VerifyOptions options;
+  std::optional<double> time_offset_s;
+  bool no_gyro = false;
+  bool no_zupt = false;
+};
+
+void PrintRow(std::FILE* out, const char* name, const PathMetrics& m) {
+  fmt::print(out,
+             "  {:<10} {:>12.2f} {:>12.2f} {:>12.2f} {:>12.1f}\n",
+             name,
+             m.start_end_distance_m,
+             m.horizontal_rms_m,
+             m.horizontal_max_m,
+             m.path_length_m);
+}
+
+void RunVerify(CLI::App& cmd, VerifyFlags& f) {
+  for (const std::string* out : {&f.output}) {
+    RefuseOverwritingInput(f.imu, *out);
+    RefuseOverwritingInput(f.gnss, *out);
+    if (!f.calibration.empty()) RefuseOverwritingInput(f.calibration, *out);
+  }
+  std::optional<Calibration> calibration;
+  if (!f.calibration.empty()) {
+    calibration = ReadCalibrationFile(f.calibration);
+    // A log of the calibrated sensor is in the calibration's units unless
+    // the user says otherwise.
+    if (cmd.count("--units") == 0) f.log.units = calibration->input_units;
+  }
+  ThrowIfInvalid(f.log.Validate(), "log options");
+  TerminalProgress progress("reading " + f.imu);
+  f.log.progress = progress.Callback();
+  const Recording imu = ReadLog(f.imu, f.log);
+  progress.Done();
+  const GnssTrack reference = ReadGnss(f.gnss, f.gnss_options);
+
+  VerifyOptions options = f.options;
+  if (f.time_offset_s) {
+    if (cmd.count("--time-align") > 0 && options.time_align != TimeAlignMode::kOffset) {
+      throw Error("--time-offset goes with --time-align offset (or no --time-align)");
+    }
+    options.time_align = TimeAlignMode::kOffset;
+    options.time_offset_s = *f.time_offset_s;
+  } else if (options.time_align == TimeAlignMode::kOffset) {
+    throw Error("--time-align offset needs --time-offset SECONDS");
+  }
+  options.integrate.use_gyro = !f.no_gyro;
+  options.integrate.zero_velocity_updates = !f.no_zupt;
+  // Gravity: as given; else normal gravity where the reference starts.
+  if (!f.gravity.gravity_mps2 && !f.gravity.latitude_deg && reference.origin) {
+    options.integrate.gravity_mps2 =
+        NormalGravityMps2(reference.origin->latitude_deg, reference.origin->height_m);
+  } else {
+    options.integrate.gravity_mps2 = f.gravity.Resolve();
+  }
+
+  const VerifyResult result = Verify(imu, reference, calibration, options);
+  WriteFileAtomically(f.output, VerificationToJson(result));
+  if (!f.trajectory_prefix.empty()) {
+    WriteFileAtomically(f.trajectory_prefix + "-reference.csv",
+                        PathToCsv(result.reference_path, result.reference_quality));
+    WriteFileAtomically(f.trajectory_prefix + "-raw.csv", PathToCsv(result.raw_path));
+    if (result.corrected_path) {
+      WriteFileAtomically(f.trajectory_prefix + "-corrected.csv",
+                          PathToCsv(*result.corrected_path));
+    }
+  }
+
+  for (const std::string& w : imu.warnings) fmt::print(stderr, "mpcal: warning: {}\n", w);
+  for (const std::string& w : reference.warnings)
+    fmt::print(stderr, "mpcal: warning: {}\n", w);
+  for (const std::string& w : result.warnings)
+    fmt::print(stderr, "mpcal: warning: {}\n", w);
+  // The result may be on standard output: then the summary goes to stderr.
+  std::FILE* out = f.output == "-" ? stderr : stdout;
+  fmt::print(out,
+             "IMU {} ({} samples{}) vs reference {} ({} epochs, {}); clocks: {}, offset "
+             "{:.3f} s, {:.1f} s in common\n",
+             f.imu,
+             imu.size(),
+             imu.gyro_radps.empty() ? "" : ", with gyroscope",
+             f.gnss,
+             result.reference.epochs,
+             ToString(reference.time_system),
+             ToString(result.time.method),
+             result.time.offset_s,
+             result.time.overlap_end_s - result.time.overlap_start_s);
+  fmt::print(
+      out,
+      "attitude: {} ({:.2f} deg from z-up), {}; gravity {:.5f} m/s2; {:.1f} s initial "
+      "rest, {} still stretches\n",
+      result.mount == MountMode::kLevel ? "levelled at the initial rest"
+                                        : "z up as stated",
+      result.initial_tilt_raw_rad * 180.0 / M_PI,
+      result.gyro_used ? "propagated by the gyroscope" : "fixed (no rotation)",
+      result.gravity_mps2,
+      result.initial_rest_s,
+      result.stops);
+  fmt::print(out,
+             "  {:<10} {:>12} {:>12} {:>12} {:>12}\n",
+             "(m)",
+             "start-end",
+             "rms horiz",
+             "max horiz",
+             "path length");
+  fmt::print(out,
+             "  {:<10} {:>12.2f} {:>12} {:>12} {:>12.1f}\n",
+             "reference",
+             result.reference.start_end_distance_m,
+             "",
+             "",
+             result.reference.path_length_m);
+  PrintRow(out, "raw", result.raw);
+  if (result.corrected) PrintRow(out, "corrected", *result.corrected);
+  fmt::print(
+      out, "wrote {}\n", f.output == "-" ? "the result to standard output" : f.output);
+}
+
+}  // namespace
+
+void AddVerifyCommand(CLI::App& root) {
+  auto f = std::make_shared<VerifyFlags>();
+  CLI::App* cmd =
+      root.add_subcommand("verify",
+                          "Field verification (the paper's section 5.2): integrate a "
+                          "walk around a closed loop "
+                          "raw and corrected, and compare both with a GNSS reference");
+  cmd->add_option("--imu", f->imu, "The walk's IMU log (as for calibrate; '-': stdin)")
+      ->required();
+  cmd->add_option("--gnss",
+                  f->gnss,
+                  "The reference: RTKLIB .pos (GPST/UTC; lat/lon/height or ECEF), NMEA "
+                  "GGA, or CSV with a t,lat,lon,h or t,e,n,u header")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--calib",
+                  f->calibration,
+                  "Calibration file (JSON): also integrate the corrected readings");
+  cmd->add_option("-o,--output", f->output, "Result file (JSON); '-' for standard output")
+      ->required();
+  cmd->add_option(
+      "--trajectory-csv",
+      f->trajectory_prefix,
+      "Also write PREFIX-reference.csv, PREFIX-raw.csv and PREFIX-corrected.csv "
+      "(t_s,e_m,n_m,u_m on the reference's clock and frame) for plotting");
+  const std::map<std::string, MountMode> mounts{{"level", MountMode::kLevel},
+                                                {"z-up", MountMode::kZUp}};
+  cmd->add_option(
+         "--mount",
+         f->options.integrate.mount,
+         "Initial attitude: level (from the initial rest; absorbs a constant bias "
+         "while the sensor does not rotate) or z-up (the sensor's z axis along an "
+         "upright pole, the paper's setting)")
+      ->transform(CLI::CheckedTransformer(mounts, CLI::ignore_case))
+      ->default_str("level")
+      ->group("Integration");
+  cmd->add_flag("--no-gyro",
+                f->no_gyro,
+                "Ignore gyroscope columns (attitude fixed after the start)")
+      ->group("Integration");
+  cmd->add_flag("--no-zupt", f->no_zupt, "No zero-velocity updates at stops")
+      ->group("Integration");
+  cmd->add_option(
+         "--still-window", f->options.still.window_s, "Still test: moving window (s)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber)
+      ->group("Integration");
+  cmd->add_option("--still-threshold",
+                  f->options.still.threshold_factor,
+                  "Still test: threshold as a multiple of the quiet level")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 100.0))
+      ->group("Integration");
+  cmd->add_option("--heading-distance",
+                  f->options.heading_distance_m,
+                  "The initial heading is taken over this distance of the reference (m)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber)
+      ->group("Integration");
+  const std::map<std::string, TimeAlignMode> aligns{
+      {"auto", TimeAlignMode::kAuto},
+      {"common", TimeAlignMode::kCommonClock},
+      {"offset", TimeAlignMode::kOffset},
+      {"motion", TimeAlignMode::kMotionStart}};
+  cmd->add_option(
+         "--time-align",
+         f->options.time_align,
+         "Clocks: common (one clock), offset (--time-offset), motion (from the start "
+         "of motion in both) or auto (common when the spans overlap, else motion)")
+      ->transform(CLI::CheckedTransformer(aligns, CLI::ignore_case))
+      ->default_str("auto")
+      ->group("Time");
+  cmd->add_option("--time-offset",
+                  f->time_offset_s,
+                  "t_reference = t_imu + SECONDS (e.g. 18 for a UTC log against GPST)")
+      ->group("Time");
+  const std::map<std::string, GnssFormat> formats{{"auto", GnssFormat::kAuto},
+                                                  {"pos", GnssFormat::kRtklibPos},
+                                                  {"nmea", GnssFormat::kNmea},
+                                                  {"csv", GnssFormat::kCsv}};
+  cmd->add_option("--gnss-format",
+                  f->gnss_options.format,
+                  "Format of the reference: auto, pos, nmea or csv")
+      ->transform(CLI::CheckedTransformer(formats, CLI::ignore_case))
+      ->default_str("auto")
+      ->group("Reference");
+  cmd->add_option(
+         "--max-q",
+         f->gnss_options.max_rtklib_quality,
+         "Drop reference epochs with a worse RTKLIB Q (1 fix, 2 float, 5 single); "
+         "0 keeps all")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 6))
+      ->group("Reference");
+  AddLogOptions(*cmd, f->log);
+  AddGravityOptions(*cmd, f->gravity);
+  cmd->footer(
+      "Gravity defaults to the WGS84 normal gravity at the reference's first fix.\n"
+      "Examples:\n"
+      "  mpcal simulate walk --preset mti-g --turn -o walk.csv --gnss ref.pos --truth "
+      "t.json\n"
+      "  mpcal verify --imu walk.csv --gnss ref.pos --calib t.json -o result.json\n"
+      "  mpcal verify --imu imu.csv --columns t=0,ax=1,ay=2,az=3,gx=4,gy=5,gz=6 --units "
+      "g \\\n"
+      "      --gnss walk.pos -o result.json --trajectory-csv walk");
+  cmd->callback([cmd, f] { RunVerify(*cmd, *f); });
+}
+
+}  // namespace mpcal::cli

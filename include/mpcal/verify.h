@@ -1,0 +1,126 @@
+/// \file verify.h
+/// \brief Field verification of a calibration against a GNSS reference
+/// (METHOD.md §5, the paper's section 5.2): align the IMU log with the
+/// reference in time, integrate the readings raw and corrected to two
+/// trajectories, place them at the first reference point with the reference's
+/// initial heading, and report for each the start-to-end distance (the paper's
+/// Table 7), the horizontal RMS and maximum distance to the reference and the
+/// path length.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mpcal/calibration.h"
+#include "mpcal/gnss.h"
+#include "mpcal/recording.h"
+#include "mpcal/trajectory.h"
+
+namespace mpcal {
+
+/// How the IMU clock is related to the reference clock.
+enum class TimeAlignMode {
+  /// Common clock when the two time spans overlap by at least half of the
+  /// shorter one; otherwise from the start of motion.
+  kAuto,
+  /// Both on one clock (e.g. unix time stamped from the receiver).
+  kCommonClock,
+  /// t_reference = t_imu + offset_s, the user's offset.
+  kOffset,
+  /// From the start of motion in both: the end of the initial rest in the
+  /// IMU log and the departure of the reference from its first position,
+  /// refined by matching the distance from the start over the first seconds.
+  kMotionStart,
+};
+/// "auto", "common", "offset" or "motion".
+std::string_view ToString(TimeAlignMode mode);
+std::optional<TimeAlignMode> ParseTimeAlignMode(std::string_view name);
+
+struct VerifyOptions {
+  /// Time alignment; `time_offset_s` is used with kOffset.
+  TimeAlignMode time_align = TimeAlignMode::kAuto;
+  double time_offset_s = 0.0;
+  /// Shortest overlap of the IMU log and the reference accepted (s).
+  double min_overlap_s = 5.0;
+  /// Integration (gravity, mount, gyroscope, zero-velocity updates).
+  IntegrateOptions integrate;
+  /// The still test behind levelling and zero-velocity updates.
+  StillOptions still;
+  /// The initial heading is taken from the start to the first reference
+  /// point at least this far away horizontally (m).
+  double heading_distance_m = 5.0;
+  /// Path lengths count only steps of at least this length (m), so that the
+  /// reference's jitter at rest does not add up.
+  double path_step_m = 0.25;
+
+  /// "" when valid, otherwise names the first bad field.
+  std::string Validate() const;
+};
+
+struct TimeAlignment {
+  TimeAlignMode method = TimeAlignMode::kCommonClock;
+  /// t_reference = t_imu + offset_s.
+  double offset_s = 0.0;
+  /// The common span, on the reference clock (s).
+  double overlap_start_s = 0.0;
+  double overlap_end_s = 0.0;
+  /// The offset the start of motion suggests, when it could be found.
+  std::optional<double> motion_offset_s;
+};
+
+/// Figures of the reference over the overlap.
+struct ReferenceMetrics {
+  double path_length_m = 0.0;
+  double start_end_distance_m = 0.0;
+  std::size_t epochs = 0;
+};
+
+struct VerifyResult {
+  TimeAlignment time;
+  ReferenceMetrics reference;
+  PathMetrics raw;
+  /// Only with a calibration.
+  std::optional<PathMetrics> corrected;
+  /// For plotting, on the reference clock and in its east-north-up frame:
+  /// the reference over the overlap and the aligned trajectories (IMU rate).
+  TimedPath reference_path;
+  std::vector<int> reference_quality;
+  TimedPath raw_path;
+  std::optional<TimedPath> corrected_path;
+  /// How the integration went (of the raw run; the corrected one shares the
+  /// still samples and the gyroscope).
+  MountMode mount = MountMode::kLevel;
+  double gravity_mps2 = 0.0;
+  bool gyro_used = false;
+  double initial_rest_s = 0.0;
+  double initial_tilt_raw_rad = 0.0;
+  int stops = 0;
+  double heading_rotation_rad = 0.0;
+  /// Things the user should know (clock disagreement, no stop detected, ...).
+  std::vector<std::string> warnings;
+};
+
+/// Runs the verification.
+/// \param imu the walk's log (units g or m/s²; gyroscope optional)
+/// \param reference the GNSS track (east-north-up)
+/// \param calibration when given, a second trajectory from corrected readings
+/// \throws mpcal::Error for invalid options, a log in counts, a calibration
+///   for other units than the log's, an empty input, logs that do not overlap
+///   in time (the message gives both spans), no initial rest where one is
+///   needed, or a reference that never moves.
+VerifyResult Verify(const Recording& imu,
+                    const GnssTrack& reference,
+                    const std::optional<Calibration>& calibration,
+                    const VerifyOptions& options);
+
+/// The result file: `"format": "mpcal.verification/1"`, with `reference`,
+/// `raw` and (with a calibration) `corrected`, plus `time_alignment` and
+/// `integration` details. Pretty-printed, newline-ended.
+std::string VerificationToJson(const VerifyResult& result);
+
+/// CSV for plotting: `t_s,e_m,n_m,u_m` per point (reference: plus `q`).
+std::string PathToCsv(const TimedPath& path, const std::vector<int>& quality = {});
+
+}  // namespace mpcal
