@@ -1,5 +1,6 @@
 #include "cli_options.h"
 
+#include <cmath>
 #include <map>
 
 #include <fmt/format.h>
@@ -8,6 +9,26 @@
 #include "mpcal/gravity.h"
 
 namespace mpcal::cli {
+namespace {
+
+CLI::Validator NumberAtLeast(bool allow_zero) {
+  return CLI::Validator(
+      [allow_zero](std::string& text) -> std::string {
+        double v = 0.0;
+        if (CLI::detail::lexical_cast(text, v) && std::isfinite(v) &&
+            (v > 0.0 || (allow_zero && v == 0.0))) {
+          return "";
+        }
+        return fmt::format("must be a {} number, got '{}'",
+                           allow_zero ? "positive (or zero)" : "positive", text);
+      },
+      allow_zero ? "NONNEGATIVE" : "POSITIVE");
+}
+
+}  // namespace
+
+const CLI::Validator PositiveNumber = NumberAtLeast(false);
+const CLI::Validator NonNegativeNumber = NumberAtLeast(true);
 
 void AddLogOptions(CLI::App& app, LogOptions& options) {
   const std::map<std::string, AccelUnits> units{
@@ -34,7 +55,7 @@ void AddLogOptions(CLI::App& app, LogOptions& options) {
       ->group("Input log");
   app.add_option("--rate", options.rate_hz,
                  "Sample rate (Hz) when the time column is a sample index or absent")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber)
       ->group("Input log");
   app.add_flag_function(
          "--gyro-dps", [&options](std::int64_t) { options.gyro_in_dps = true; },
@@ -87,22 +108,47 @@ void AddCalibrateOptions(CLI::App& app, CalibrateOptions& options) {
   app.add_option("--window", options.detect.window_s,
                  "Static detection: moving window of the motion statistic (s)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber)
       ->group("Static detection");
   app.add_option("--min-static", options.detect.min_static_s,
                  "Static detection: shortest still position kept (s)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber)
       ->group("Static detection");
   app.add_option("--settle", options.detect.settle_s,
                  "Static detection: trimmed from each end of a position (s)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
+      ->check(NonNegativeNumber)
       ->group("Static detection");
   app.add_option("--threshold", options.detect.threshold_factor,
                  "Static detection: threshold as a multiple of the quiet level")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0))
+      ->group("Static detection");
+  app.add_option("--max-still", options.detect.max_still_g,
+                 "Static detection: nothing moving more than this (g) is still, whatever "
+                 "the quiet level; 0 = no cap")
+      ->capture_default_str()
+      ->check(NonNegativeNumber)
+      ->group("Static detection");
+  app.add_option("--merge-gap", options.detect.merge_gap_s,
+                 "Static detection: merge two positions at the same orientation across a "
+                 "bump shorter than this (s)")
+      ->capture_default_str()
+      ->check(NonNegativeNumber)
+      ->group("Static detection");
+  app.add_option_function<double>(
+         "--range",
+         [&options](double g) { options.detect.range_mps2 = g * kStandardGravityMps2; },
+         "Static detection: measuring range of the sensor (g, e.g. 2 for ±2 g); positions "
+         "with readings at the limit are dropped with a warning. Default: the limit is "
+         "found from runs of identical extreme readings")
+      ->check(PositiveNumber)
+      ->group("Static detection");
+  app.add_option("--merge-angle", options.detect.merge_angle_deg,
+                 "Static detection: ... and closer than this in orientation (deg)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 180.0))
       ->group("Static detection");
 }
 

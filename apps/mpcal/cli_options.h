@@ -29,6 +29,13 @@ void AddGravityOptions(CLI::App& app, GravityFlags& flags);
 /// --model, --robust, detection tuning (--window, --min-static, ...).
 void AddCalibrateOptions(CLI::App& app, CalibrateOptions& options);
 
+/// Checks for numeric flags: a finite number > 0 (>= 0). CLI11's own
+/// PositiveNumber / NonNegativeNumber print their range up to DBL_MAX, digit
+/// by digit, in the error; these say what is wrong ("--rate: must be a
+/// positive number, got -1").
+extern const CLI::Validator PositiveNumber;
+extern const CLI::Validator NonNegativeNumber;
+
 /// Throws mpcal::Error naming the option when `problem` is not empty.
 void ThrowIfInvalid(const std::string& problem, const std::string& what);
 

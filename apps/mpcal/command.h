@@ -19,6 +19,8 @@ void AddApplyCommand(CLI::App& root);
 void AddRepeatCommand(CLI::App& root);
 void AddVerifyCommand(CLI::App& root);
 void AddSimulateCommand(CLI::App& root);
+/// `simulate walk`, added under the `simulate` parent by AddSimulateCommand.
+void AddSimulateWalkCommand(CLI::App& simulate);
 void AddReportCommand(CLI::App& root);
 void AddDemoCommand(CLI::App& root);
 

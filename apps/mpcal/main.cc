@@ -33,6 +33,12 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer("Run 'mpcal SUBCOMMAND --help' for the options and an example of each.");
   mpcal::cli::AddCalibrateCommand(app);
+  mpcal::cli::AddDetectCommand(app);
+  mpcal::cli::AddDemoCommand(app);
+  mpcal::cli::AddApplyCommand(app);
+  mpcal::cli::AddSimulateCommand(app);
+  mpcal::cli::AddVerifyCommand(app);
+  mpcal::cli::AddRepeatCommand(app);
   // TODO(integration): one line per subcommand as they land.
 
   try {

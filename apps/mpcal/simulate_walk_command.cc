@@ -164,18 +164,18 @@ void AddSimulateWalkCommand(CLI::App& simulate) {
       ->capture_default_str()
       ->group("Walk");
   app->add_option("--rate", o.rate_hz, "IMU rate (Hz); default the device's")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber)
       ->group("Sensor");
   app->add_option("--noise-density",
                   f->noise_density,
                   "Accelerometer white-noise density (m/s2/√Hz); default the device's")
-      ->check(CLI::NonNegativeNumber)
+      ->check(NonNegativeNumber)
       ->group("Sensor");
   app->add_option("--gyro-noise-density",
                   o.gyro_noise_density_radps_per_sqrt_hz,
                   "Gyroscope white-noise density (rad/s/√Hz)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
+      ->check(NonNegativeNumber)
       ->group("Sensor");
   app->add_option("--gnss-rate", o.gnss_rate_hz, "GNSS epochs per second (Hz)")
       ->capture_default_str()
@@ -184,7 +184,7 @@ void AddSimulateWalkCommand(CLI::App& simulate) {
                   o.gnss_noise_horizontal_m,
                   "GNSS horizontal noise, 1 sigma (m); vertical is twice that")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
+      ->check(NonNegativeNumber)
       ->group("Reference");
   app->add_option("--origin", o.origin.latitude_deg, "Latitude of the start (deg)")
       ->capture_default_str()

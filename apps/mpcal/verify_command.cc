@@ -165,8 +165,7 @@ void AddVerifyCommand(CLI::App& root) {
                   f->gnss,
                   "The reference: RTKLIB .pos (GPST/UTC; lat/lon/height or ECEF), NMEA "
                   "GGA, or CSV with a t,lat,lon,h or t,e,n,u header")
-      ->required()
-      ->check(CLI::ExistingFile);
+      ->required();  // a missing file is input (exit 1), reported by ReadGnss
   cmd->add_option("--calib",
                   f->calibration,
                   "Calibration file (JSON): also integrate the corrected readings");
@@ -197,7 +196,7 @@ void AddVerifyCommand(CLI::App& root) {
   cmd->add_option(
          "--still-window", f->options.still.window_s, "Still test: moving window (s)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber)
       ->group("Integration");
   cmd->add_option("--still-threshold",
                   f->options.still.threshold_factor,
@@ -209,7 +208,7 @@ void AddVerifyCommand(CLI::App& root) {
                   f->options.heading_distance_m,
                   "The initial heading is taken over this distance of the reference (m)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber)
       ->group("Integration");
   const std::map<std::string, TimeAlignMode> aligns{
       {"auto", TimeAlignMode::kAuto},

@@ -8,6 +8,21 @@
 /// settling after each turn is trimmed; neighbouring intervals at the same
 /// orientation separated by a short bump are merged; intervals shorter than
 /// the minimum are dropped and counted.
+///
+/// The motion statistic at sample i is the norm of the per-axis standard
+/// deviations over the centred window of `window_s` around it,
+/// sqrt(var_x + var_y + var_z), computed from running sums in O(n). A window
+/// is low only when every sample in it is still, so a run of low-statistic
+/// centres already lies half a window inside the still stretch: the smear of
+/// the moving window costs nothing at the ends; the settling is trimmed
+/// explicitly by `settle_s`.
+///
+/// The threshold is `threshold_factor` × the quiet level, capped at
+/// `max_still_g` (in g, turned into the recording's units with the radius of a
+/// sphere fitted to one-window means: no scale needs to be known for raw
+/// counts). The cap is what lets a recording that never stops moving come out
+/// empty, with the reason, instead of its least-moving stretches being taken
+/// for positions: its quiet level is a motion level.
 #pragma once
 
 #include <cstddef>
@@ -24,15 +39,40 @@ struct DetectOptions {
   /// Length of the moving window of the motion statistic (s). Longer rejects
   /// slow drifts of the hand better, shorter resolves short positions.
   double window_s = 1.0;
-  /// Shortest static interval kept, after trimming (s).
+  /// Shortest static interval kept, after trimming (s). Lower it for quick
+  /// sessions (positions held 2-3 s); the paper holds each 40-60 s.
   double min_static_s = 2.0;
   /// Trimmed from each end of an interval to drop settling (s).
   double settle_s = 0.3;
-  /// Threshold = this factor × the quiet level of the recording.
+  /// Threshold = this factor × the quiet level of the recording. Raise it
+  /// (5-10) when a hand-held sensor trembles more in some positions than in
+  /// the quietest ones and positions are missed; lower it (2) when turns
+  /// leak into intervals.
   double threshold_factor = 3.0;
+  /// Quantile of the motion statistic over the recording taken as its quiet
+  /// level (0-1). Robust as long as more than about twice this fraction of
+  /// the recording is still; 0.05 keeps recordings that are 90 % motion
+  /// working.
+  double quiet_quantile = 0.05;
+  /// Cap of the threshold (g): no stretch whose motion statistic exceeds
+  /// this is still, whatever the quiet level. A hand holding a sensor still
+  /// stays within a few mg; a turn of 10 deg/s over a 1 s window is 0.05 g.
+  /// Raise it for a sensor noisier than this at rest; 0 disables the cap.
+  double max_still_g = 0.05;
   /// Intervals closer than this in time (s) and in orientation (deg) merge.
   double merge_gap_s = 1.0;
   double merge_angle_deg = 3.0;
+  /// Measuring range of the sensor (m/s², per axis, e.g. 19.6 for ±2 g): a
+  /// reading at or beyond 99 % of it in magnitude is clipped (for raw counts
+  /// about the centre of the sphere the readings lie on). 0 = find the limits
+  /// from the data: an axis's largest or smallest value, at least 1.5 g from
+  /// that centre and repeated in a run of at least 3 identical samples (a
+  /// sensor held still never reads 1.5 g; a saturated one sticks at its
+  /// limit). Clipped samples are left out of the quiet level, and a position
+  /// that contains any is dropped (DetectResult::dropped_clipped) with a
+  /// warning naming its time: its mean would be biased. Give the range for a
+  /// sensor whose range is below 1.5 g, or a large value to disable the check.
+  double range_mps2 = 0.0;
 
   /// Empty string when valid, otherwise names the first bad field.
   std::string Validate() const;
@@ -45,11 +85,17 @@ struct StaticInterval {
   double start_s = 0.0;
   double end_s = 0.0;
   /// Mean and per-axis sample standard deviation of the readings, in the
-  /// recording's units.
+  /// recording's units, over the kept samples (a merged bump excluded).
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   Eigen::Vector3d std = Eigen::Vector3d::Zero();
-  std::size_t samples() const { return end - begin; }
+  /// Samples inside [begin, end) left out of mean and std: the bump (and its
+  /// settling) between two merged pieces. 0 for an interval not merged.
+  std::size_t excluded = 0;
+  /// Samples behind mean and std.
+  std::size_t samples() const { return end - begin - excluded; }
   double duration_s() const { return end_s - start_s; }
+  /// Noise level: the norm of `std` (recording units).
+  double noise() const { return std.norm(); }
 };
 
 struct DetectResult {
@@ -58,14 +104,37 @@ struct DetectResult {
   /// units).
   double quiet_level = 0.0;
   double threshold = 0.0;
+  /// One g in the recording's units, as the cap used it (exact for g and
+  /// m/s², estimated for counts), and whether the cap lowered the threshold.
+  double gravity_units = 0.0;
+  bool threshold_capped = false;
   /// Still stretches dropped for being shorter than min_static_s.
   int dropped_short = 0;
   /// Pairs of intervals merged across a short bump.
   int merged = 0;
+  /// Samples at the sensor's range limit (see DetectOptions::range_mps2), and
+  /// the positions dropped because they contain some.
+  std::size_t clipped_samples = 0;
+  int dropped_clipped = 0;
+  /// Non-fatal findings for the user, one line each (a position dropped for
+  /// clipping, with its time in the log's clock).
+  std::vector<std::string> warnings;
+  /// Longest still stretch found (s, before trimming), kept or not, and the
+  /// fraction of the samples that were still.
+  double longest_still_s = 0.0;
+  double still_fraction = 0.0;
+  /// Moving window in samples and the typical sample period (s).
+  std::size_t window_samples = 0;
+  double sample_period_s = 0.0;
+  /// When no interval was found: why, with the figures, and what to try
+  /// (one line, for the user). Empty otherwise.
+  std::string message;
 };
 
+/// Finds the static positions of `recording` (any units; time must increase).
 /// \throws mpcal::Error if the recording is empty or too short for one
-///   window, or the options are invalid.
+///   window, its time does not increase, a reading is not finite, or the
+///   options are invalid.
 DetectResult DetectStatic(const Recording& recording, const DetectOptions& options);
 
 }  // namespace mpcal

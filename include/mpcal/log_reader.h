@@ -5,16 +5,30 @@
 /// an optional header naming the columns; `#` and `%` comment lines; CRLF line
 /// ends; extra columns ignored. Column names recognised case-insensitively:
 /// time `t`/`time`/`timestamp`, accelerometer `ax`/`acc_x`/`accel_x`/`accX`
-/// (and y, z), gyroscope `gx`/`gyr_x`/`gyro_x`/`gyrX` (and y, z). Without a
-/// header the columns are t, ax, ay, az in order unless `columns` says
-/// otherwise.
+/// (and y, z), gyroscope `gx`/`gyr_x`/`gyro_x`/`gyrX` (and y, z), and a
+/// sample counter `n_samples`/`sample`/`index` used as time with a rate. A
+/// unit in brackets after a name (`ax[m/s2]`, `acc_x (g)`) is ignored.
+/// Without a header the columns are t, ax, ay, az in order unless `columns`
+/// says otherwise.
+///
+/// Two entry points: ReadLog reads a whole log into a Recording (for
+/// calibration); LogScanner streams it line by line, keeping each line's
+/// bytes, for commands that rewrite a log (`mpcal apply`). Both read the file
+/// in large chunks and parse numbers with fast_float, so memory does not
+/// depend on the file's size beyond what the Recording itself holds.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "mpcal/recording.h"
 #include "mpcal/units.h"
@@ -23,23 +37,31 @@ namespace mpcal {
 
 /// Unit of the time column.
 enum class TimeUnit { kAuto, kSeconds, kMilliseconds, kMicroseconds, kNanoseconds, kSampleIndex };
+/// "auto", "s", "ms", "us", "ns" or "index".
 std::string_view ToString(TimeUnit unit);
-std::optional<TimeUnit> ParseTimeUnit(std::string_view name);  // "s","ms","us","ns","index","auto"
+/// Inverse of ToString (also "µs"); std::nullopt for an unknown name.
+std::optional<TimeUnit> ParseTimeUnit(std::string_view name);
 
 struct LogOptions {
   /// Explicit column mapping "t=NAME|INDEX,ax=...,ay=...,az=...[,gx=...]";
-  /// indices are 0-based. Empty: from the header, or t,ax,ay,az in order.
+  /// indices are 0-based. Keys not given are taken from the header when
+  /// there is one. Empty: from the header, or t,ax,ay,az in order.
   std::string columns;
   /// Units of the accelerometer columns.
   AccelUnits units = AccelUnits::kMps2;
   /// Units of the gyroscope columns: rad/s, or deg/s when true.
   bool gyro_in_dps = false;
   /// Unit of the time column. kAuto: seconds for non-integer values; for
-  /// integer timestamps ns/µs/ms detected from the typical sample spacing.
+  /// integer timestamps ns/µs/ms detected from the typical sample spacing
+  /// (or a sample index when `rate_hz` is given and the spacing is 1).
   TimeUnit time_unit = TimeUnit::kAuto;
   /// Sample rate (Hz) when the time column is a sample index (or absent);
   /// 0 = not given.
   double rate_hz = 0.0;
+  /// Called now and then (at most about 100 times) with the fraction of the
+  /// input read so far, in [0, 1]; only for regular files, whose size is
+  /// known. Empty: no progress reports.
+  std::function<void(double fraction)> progress;
 
   /// Empty string when valid, otherwise names the first bad field.
   std::string Validate() const;
@@ -47,10 +69,97 @@ struct LogOptions {
 
 /// Reads a whole log into memory. `path` "-" reads standard input.
 ///
+/// Duplicated timestamps are dropped and reported in Recording::warnings, as
+/// are gaps in time, a detected integer time unit and a truncated last line.
+///
 /// \throws mpcal::Error for a missing or unreadable file, a directory, an
-///   empty file or one with no data rows, a malformed line (not the last one:
-///   a truncated last line is dropped with a warning), too few columns, an
-///   unknown column name, non-finite values, or a time column that goes back.
+///   empty file or one with no data rows, binary data, a malformed line (not
+///   the last one: a truncated last line is dropped with a warning), too few
+///   columns, an unknown column name, non-finite values, invalid options, or
+///   a time column that goes back. Messages name the file, the line number
+///   and, for a bad value, the column.
 Recording ReadLog(const std::string& path, const LogOptions& options);
+
+/// Where the columns of a log are, found from its first lines.
+struct LogLayout {
+  /// ',', ';', '\t', or ' ' for runs of blanks (spaces and tabs).
+  char delimiter = ',';
+  /// '.' or, for logs with decimal commas (delimiter ';', tab or blank), ','.
+  char decimal_point = '.';
+  /// 1-based line number of the header; 0 when the log has none.
+  std::size_t header_line = 0;
+  /// The header's names, or "column N" when there is no header.
+  std::vector<std::string> column_names;
+  /// 0-based column indices; -1 when absent (no time column: time from the
+  /// sample index and the rate).
+  int time_column = -1;
+  std::array<int, 3> accel_columns = {-1, -1, -1};
+  std::array<int, 3> gyro_columns = {-1, -1, -1};
+  /// The time column's unit, resolved (never kAuto).
+  TimeUnit time_unit = TimeUnit::kSeconds;
+  /// Seconds per unit of the time column (1/rate for a sample index).
+  double seconds_per_time_unit = 1.0;
+  /// Fewest columns a data line must have.
+  int min_columns = 4;
+
+  bool has_gyro() const { return gyro_columns[0] >= 0; }
+  /// "t = column 0 'time', ax = column 1 'ax', ..." for messages.
+  std::string Describe() const;
+};
+
+/// One line of a log, as LogScanner returns it.
+struct LogLine {
+  /// The line's bytes without its end of line.
+  std::string_view text;
+  /// "\n", "\r\n", or "" for a last line without one.
+  std::string_view eol;
+  std::size_t line_number = 0;  ///< 1-based
+  /// False for comments, blank lines and the header.
+  bool is_data = false;
+  /// Data lines only: the time column's raw value in its own unit (see
+  /// LogLayout::time_unit), or the 0-based data row number when the log has
+  /// no time column.
+  double time_raw = 0.0;
+  /// Data lines only: accelerometer readings in the log's units.
+  Eigen::Vector3d accel = Eigen::Vector3d::Zero();
+  /// Data lines only, when the scanner parses the gyroscope: as in the log.
+  Eigen::Vector3d gyro = Eigen::Vector3d::Zero();
+  /// Data lines only: byte range [first, second) of each accelerometer
+  /// number within `text` (x, y, z), so that it can be replaced.
+  std::array<std::pair<std::uint32_t, std::uint32_t>, 3> accel_span{};
+};
+
+/// Streams a log line by line. Comments, blank lines and the header are
+/// returned too (is_data false), so that a rewriter can copy them. A
+/// malformed last line is withheld and reported in warnings().
+class LogScanner {
+ public:
+  /// Opens `path` ("-": standard input) and reads its first lines to find
+  /// the layout. `parse_gyro`: also parse the gyroscope columns.
+  /// \throws mpcal::Error as ReadLog for an unusable file, invalid options,
+  ///   or a layout that cannot be found (no data line, unknown columns).
+  LogScanner(const std::string& path, const LogOptions& options, bool parse_gyro = false);
+  ~LogScanner();
+  LogScanner(const LogScanner&) = delete;
+  LogScanner& operator=(const LogScanner&) = delete;
+
+  const LogLayout& layout() const;
+  /// The name used in messages (the path, or "<stdin>").
+  const std::string& source() const;
+  /// Next line into `*line`; its views stay valid until the next call.
+  /// Returns false at the end of the input.
+  /// \throws mpcal::Error for a read failure or a malformed line that is not
+  ///   the last one.
+  bool Next(LogLine* line);
+  /// Non-fatal findings so far (truncated last line, detected time unit).
+  const std::vector<std::string>& warnings() const;
+  /// Bytes consumed so far, and the input's size (0 when not a regular file).
+  std::uint64_t bytes_read() const;
+  std::uint64_t total_bytes() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace mpcal

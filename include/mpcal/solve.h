@@ -61,7 +61,8 @@ struct SolveResult {
   ErrorModel initial;   ///< six-position initialisation
   ErrorModel estimate;
   /// Covariance of the 9 packed parameters (order of kParameterNames), scaled
-  /// by the a-posteriori variance of unit weight. Rows and columns of
+  /// by the a-posteriori variance of unit weight when that exceeds 1 (the
+  /// residuals show more scatter than the measured noise explains). Rows and columns of
   /// parameters held fixed (angles of kBiasScale6) are zero.
   Eigen::Matrix<double, 9, 9> covariance = Eigen::Matrix<double, 9, 9>::Zero();
   ErrorModel std;  ///< square roots of the covariance diagonal
@@ -80,6 +81,10 @@ struct SolveResult {
   std::vector<bool> used;
   /// Each position's deleted residual in units of its noise level.
   std::vector<double> standardised_residual;
+  /// Scatter of the positions beyond what their sensor noise explains (m/s²,
+  /// 1σ): hand tremor, non-white noise or model error; it enters every
+  /// position's weight. Zero when the noise explains the residuals.
+  double position_scatter_mps2 = 0.0;
   /// χ² of the whitened residuals over degrees of freedom.
   double variance_factor = 0.0;
   double final_cost = 0.0;

@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "mpcal/coverage.h"
 #include "mpcal/error.h"
-#include "sphere_fit.h"
 
 namespace mpcal {
 namespace {
@@ -64,18 +64,16 @@ CalibrateResult CalibrateRecording(const Recording& recording,
   CalibrateResult result;
   result.detection = DetectStatic(recording, options.detect);
   const auto& intervals = result.detection.intervals;
+  if (intervals.empty()) throw Error(result.detection.message);
   const int needed = ParameterCount(options.solve.model) + 1;
   if (static_cast<int>(intervals.size()) < needed) {
-    throw Error(fmt::format(
-        "{}: found {} static positions, the {} model needs at least {} (more than 18 "
-        "spanning the sphere for reliable results){}; run 'mpcal detect {}' to see what "
-        "was found and what to record",
-        recording.source, intervals.size(), ToString(options.solve.model), needed,
-        result.detection.dropped_short > 0
-            ? fmt::format("; {} still stretches were shorter than --min-static {} s",
-                          result.detection.dropped_short, options.detect.min_static_s)
-            : "",
-        recording.source));
+    CoverageOptions coverage;
+    coverage.model = options.solve.model;
+    coverage.units = recording.units;
+    throw Error(fmt::format("{}: {}; run 'mpcal detect {}' to see the positions found",
+                            recording.source,
+                            AssessCoverage(result.detection, coverage).summary,
+                            recording.source));
   }
 
   // Raw counts: the nominal scale is the radius of the sphere the position
@@ -86,11 +84,13 @@ CalibrateResult CalibrateRecording(const Recording& recording,
   } else {
     std::vector<Eigen::Vector3d> means;
     for (const auto& in : intervals) means.push_back(in.mean);
-    const internal::Sphere sphere = internal::FitSphere(means);
-    if (!(sphere.radius > 0.0)) {
-      throw Error(fmt::format("{}: the static positions all read the same counts; the "
-                              "sensor did not change orientation",
-                              recording.source));
+    const SphereFit sphere = FitSphere(means, AccelUnits::kCounts);
+    if (!sphere.fitted || !(sphere.radius > 0.0)) {
+      throw Error(fmt::format(
+          "{}: the {} static positions do not spread over the sphere, so the offset and "
+          "scale of the raw counts cannot be found from them; record positions with each "
+          "axis up and down (run 'mpcal detect {} --units counts')",
+          recording.source, intervals.size(), recording.source));
     }
     result.mps2_per_unit = options.solve.gravity_mps2 / sphere.radius;
   }
@@ -109,7 +109,9 @@ CalibrateResult CalibrateRecording(const Recording& recording,
   }
 
   result.solve = Solve(result.positions, options.solve);
-  result.warnings = result.solve.warnings;
+  result.warnings = result.detection.warnings;  // positions dropped for clipping
+  result.warnings.insert(result.warnings.end(), result.solve.warnings.begin(),
+                         result.solve.warnings.end());
 
   Calibration& c = result.calibration;
   c.model_kind = options.solve.model;

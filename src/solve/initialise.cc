@@ -6,9 +6,9 @@
 
 #include <fmt/format.h>
 
+#include "mpcal/coverage.h"
 #include "mpcal/error.h"
 #include "mpcal/solve.h"
-#include "sphere_fit.h"
 
 namespace mpcal {
 namespace {
@@ -31,7 +31,7 @@ ErrorModel InitialiseSixPosition(std::span<const PositionObservation> positions,
   // even when the positions crowd one hemisphere.
   std::vector<Eigen::Vector3d> means;
   for (const auto& p : positions) means.push_back(p.mean_mps2);
-  const Eigen::Vector3d centre = internal::FitSphere(means).centre;
+  const Eigen::Vector3d centre = FitSphere(means, AccelUnits::kMps2).centre;
 
   ErrorModel m;
   for (int axis = 0; axis < 3; ++axis) {

@@ -133,8 +133,8 @@ class Fit {
   Fit(const FitInput& input, const ErrorModel& start, const SolveOptions& options)
       : input_(input), options_(options), blocks_(start) {}
 
-  // Two passes: the weights depend (weakly) on the parameters, so the second
-  // weighs each position at the first estimate. A robust loss, when asked
+  // Two passes: the weights depend on the parameters and on the residuals, so
+  // the second weighs each position at the first estimate. A robust loss, when asked
   // for, enters in the second pass, scaled to the whitened residuals of the
   // first so that it reacts to outliers and not to the overall noise level.
   //
@@ -156,10 +156,18 @@ class Fit {
     summary_ = RunSolver(options_, *problem_);
     iterations_ = static_cast<int>(summary_.iterations.size()) - 1;
 
+    // The second pass weighs each position by its noise at the first
+    // estimate plus the scatter of the positions that noise leaves
+    // unexplained (zero for white noise, dominant on many real recordings).
     sigmas_ = Sigmas(blocks_.Model());
+    std::vector<double> residuals;
+    for (std::size_t k = 0; k < input_.positions.size(); ++k) residuals.push_back(Residual(k));
+    scatter_variance_ = internal::PositionScatterVariance(
+        residuals, sigmas_, ParameterCount(options_.model));
+    for (double& sigma : sigmas_) sigma = std::sqrt(sigma * sigma + scatter_variance_);
     std::vector<double> whitened_abs;
     for (std::size_t k = 0; k < input_.positions.size(); ++k) {
-      whitened_abs.push_back(std::abs(Residual(k) / sigmas_[k]));
+      whitened_abs.push_back(std::abs(residuals[k] / sigmas_[k]));
     }
     loss_scale_ = std::max(kMadToSigma * Median(whitened_abs), 1e-12);
     Build(options_.robust);
@@ -224,6 +232,7 @@ class Fit {
   }
 
   ErrorModel Estimate() const { return blocks_.Model(); }
+  double scatter_variance() const { return scatter_variance_; }
   const std::vector<double>& sigmas() const { return sigmas_; }
   const ceres::Solver::Summary& summary() const { return summary_; }
   int iterations() const { return iterations_; }
@@ -269,6 +278,7 @@ class Fit {
   Blocks blocks_;
   std::vector<double> sigmas_;
   double loss_scale_ = 1.0;
+  double scatter_variance_ = 0.0;
   std::unique_ptr<ceres::Problem> problem_;
   ceres::Solver::Summary summary_;
   int iterations_ = 0;
@@ -415,6 +425,7 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   }
 
   result.estimate = fit->Estimate();
+  result.position_scatter_mps2 = std::sqrt(fit->scatter_variance());
   result.final_cost = fit->summary().final_cost;
   result.residual_after_mps2 = MagnitudeResiduals(result.estimate, positions, options.gravity_mps2);
   result.residual_rms_before_mps2 = Rms(result.residual_before_mps2, result.used);
@@ -459,13 +470,18 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   }
 
   // Covariance: (JᵀJ)⁻¹ of the whitened problem, scaled by the a-posteriori
-  // variance of unit weight (METHOD.md §3).
+  // variance of unit weight (METHOD.md §3) when it exceeds 1, never shrunk
+  // below the a-priori level. The weights already carry the noise measured
+  // from thousands of samples per position; K − p residuals (5 for 14
+  // positions) can reveal extra error (hand tremor, non-white noise, misfit)
+  // but would often understate the noise by half if trusted the other way.
   double chi2 = 0.0;
   for (std::size_t j = 0; j < in.index.size(); ++j) {
     chi2 += std::pow(fit->Residual(j) / fit->sigmas()[j], 2);
   }
   result.variance_factor = chi2 / (static_cast<double>(in.index.size()) - p);
-  result.covariance.topLeftCorner(p, p) = result.variance_factor * fit->UnscaledCovariance();
+  result.covariance.topLeftCorner(p, p) =
+      std::max(1.0, result.variance_factor) * fit->UnscaledCovariance();
   result.std = FromVector(result.covariance.diagonal().cwiseMax(0.0).cwiseSqrt());
   return result;
 }

@@ -24,4 +24,16 @@ std::vector<Eigen::Vector3d> UsableNoise(std::span<const PositionObservation> po
 double ResidualSigma(const ErrorModel& model, const Eigen::Vector3d& mean_mps2,
                      const Eigen::Vector3d& noise_mps2, std::size_t samples);
 
+/// The variance τ² (m/s²)² of a scatter of the positions that their sensor
+/// noise does not explain — hand tremor, non-white noise, model error —
+/// added to every position's variance: σ_k² + τ². A variance component
+/// (Förstner 1979) estimated robustly, so that one bumped position cannot
+/// inflate it and hide itself: the median of r_k²/(σ_k² + τ²) is matched to
+/// that of χ²₁ (scaled by (K − p)/K for the fitted parameters). Zero unless
+/// the residuals show more scatter than the noise explains by ten times the
+/// sampling spread of that median, so that white-noise sessions keep their
+/// efficient weights.
+double PositionScatterVariance(const std::vector<double>& residuals_mps2,
+                               const std::vector<double>& sigmas_mps2, int parameters);
+
 }  // namespace mpcal::internal

@@ -36,7 +36,7 @@ mpcal_cli_test(verify_offset_needs_value EXIT 1 MATCH "needs --time-offset" ABSE
 mpcal_cli_test(verify_counts EXIT 1 MATCH "raw counts" ABSENT result.json
   ARGS verify --imu ${_real_imu} --columns t=0,ax=1,ay=2,az=3 --units counts
        --gnss ${_real_pos} -o result.json)
-mpcal_cli_test(verify_missing_reference EXIT 2 MATCH "--gnss" ABSENT result.json
+mpcal_cli_test(verify_missing_reference EXIT 1 MATCH "no_such.pos: cannot open" ABSENT result.json
   ARGS verify --imu ${_real_imu} --gnss no_such.pos -o result.json)
 mpcal_cli_test(verify_bad_mount EXIT 2 MATCH "--mount" ABSENT result.json
   ARGS verify --imu ${_real_imu} --gnss ${_real_pos} --mount sideways -o result.json)

@@ -1,0 +1,96 @@
+// `mpcal apply CALIB.json INPUT -o OUTPUT`: corrects every accelerometer row
+// of a log with a calibration file, keeping everything else as it is.
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "cli_options.h"
+#include "command.h"
+#include "mpcal/apply.h"
+#include "mpcal/atomic_file.h"
+#include "mpcal/calibration_file.h"
+#include "mpcal/error.h"
+#include "progress.h"
+
+namespace mpcal::cli {
+namespace {
+
+struct ApplyFlags {
+  std::string calibration;
+  std::string input;
+  std::string output;
+  ApplyOptions options;
+  std::optional<AccelUnits> out_units;
+};
+
+void RunApply(CLI::App& cmd, ApplyFlags& flags) {
+  if (flags.calibration == "-" && flags.input == "-") {
+    throw Error("the calibration file and the log cannot both be standard input ('-')");
+  }
+  // The log is refused as the output inside ApplyCalibration; the
+  // calibration file is only known here.
+  RefuseOverwritingInput(flags.calibration, flags.output);
+  const Calibration calibration = ReadCalibrationFile(flags.calibration);
+  ApplyOptions options = flags.options;
+  // A log from the calibrated sensor is in the calibration's units unless
+  // the user says otherwise.
+  if (cmd.count("--units") == 0) options.log.units = calibration.input_units;
+  options.out_units = flags.out_units;
+  TerminalProgress progress("applying " + flags.calibration + " to " + flags.input);
+  options.log.progress = progress.Callback();
+  const ApplyResult result =
+      ApplyCalibration(calibration, flags.input, flags.output, options);
+  progress.Done();
+  for (const std::string& warning : result.warnings) {
+    fmt::print(stderr, "mpcal: warning: {}\n", warning);
+  }
+  // Standard output may be the corrected log itself: the summary goes there
+  // only when the log went to a file.
+  if (flags.output != "-") {
+    fmt::print("corrected {} rows of '{}' into '{}' (accelerometer in {}",
+               result.data_rows, flags.input, flags.output, ToString(result.out_units));
+    if (result.rest_magnitude_mps2) {
+      fmt::print("; |a| at rest {:.5f} m/s², gravity {:.5f} m/s²", *result.rest_magnitude_mps2,
+                 calibration.gravity_mps2);
+    }
+    fmt::print(")\n");
+  }
+}
+
+}  // namespace
+
+void AddApplyCommand(CLI::App& root) {
+  auto flags = std::make_shared<ApplyFlags>();
+  CLI::App* cmd = root.add_subcommand(
+      "apply",
+      "Correct a log with a calibration file: every accelerometer row by eqs 8-10; the other "
+      "columns, the header, comments and row order kept as they are.");
+  cmd->add_option("CALIB", flags->calibration,
+                  "Calibration file (JSON) written by 'mpcal calibrate'")
+      ->required();
+  cmd->add_option("INPUT", flags->input, "Log to correct ('-': standard input)")->required();
+  cmd->add_option("-o,--output", flags->output,
+                  "Corrected log ('-': standard output); written whole or not at all")
+      ->required();
+  AddLogOptions(*cmd, flags->options.log);
+  const std::map<std::string, AccelUnits> out_units{{"mps2", AccelUnits::kMps2},
+                                                    {"g", AccelUnits::kG}};
+  cmd->add_option("--out-units", flags->out_units,
+                  "Units of the corrected accelerometer columns: mps2 or g (default: the "
+                  "log's units; m/s2 for a log in counts)")
+      ->transform(CLI::CheckedTransformer(out_units, CLI::ignore_case))
+      ->group("Output");
+  cmd->footer(
+      "Example:\n"
+      "  mpcal apply calib.json session.csv -o corrected.csv\n"
+      "  logger | mpcal apply calib.json - -o - --out-units g | plot\n"
+      "The log is read with the calibration's units unless --units is given; a log whose\n"
+      "magnitude at rest is far from the calibration's gravity gets a warning.");
+  cmd->callback([cmd, flags] { RunApply(*cmd, *flags); });
+}
+
+}  // namespace mpcal::cli

@@ -1,0 +1,162 @@
+// mpcal repeat: several sessions of one device (recordings or calibration
+// files) in, the paper's repeatability table and the verdict out.
+#include <fstream>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "calibration_table.h"
+#include "cli_options.h"
+#include "command.h"
+#include "mpcal/atomic_file.h"
+#include "mpcal/calibrate.h"
+#include "mpcal/calibration_file.h"
+#include "mpcal/error.h"
+#include "mpcal/log_reader.h"
+#include "mpcal/repeat.h"
+#include "progress.h"
+
+namespace mpcal::cli {
+namespace {
+
+struct RepeatFlags {
+  std::vector<std::string> inputs;
+  std::string json;
+  std::string csv;
+  LogOptions log;
+  GravityFlags gravity;
+  CalibrateOptions calibrate;
+  RepeatabilityOptions repeat;
+};
+
+// A calibration file is JSON (an object); a log never starts with '{'.
+bool IsCalibrationFile(const std::string& path) {
+  if (path == "-") return false;
+  // By its name too, so that a missing or broken .json is reported as a
+  // calibration file, not as a log.
+  if (path.ends_with(".json")) return true;
+  std::ifstream in(path, std::ios::binary);
+  char c = 0;
+  while (in.get(c)) {
+    const auto u = static_cast<unsigned char>(c);
+    // Skip white space and a UTF-8 byte-order mark.
+    if (u == ' ' || u == '\t' || u == '\r' || u == '\n' || u == 0xEF || u == 0xBB ||
+        u == 0xBF) {
+      continue;
+    }
+    return c == '{';
+  }
+  return false;
+}
+
+Calibration CalibrateSession(const std::string& path, RepeatFlags& f) {
+  TerminalProgress progress("reading " + path);
+  f.log.progress = progress.Callback();
+  const Recording recording = ReadLog(path, f.log);
+  progress.Done();
+  PrintWarnings(recording.warnings);
+  // Among several sessions, say which one cannot be calibrated.
+  const CalibrateResult result = [&] {
+    try {
+      return CalibrateRecording(recording, f.calibrate);
+    } catch (const Error& e) {
+      if (std::string_view(e.what()).starts_with(path)) throw;
+      throw Error(fmt::format("{}: {}", path, e.what()));
+    }
+  }();
+  for (const std::string& w : result.warnings) PrintWarnings({path + ": " + w});
+  if (!result.solve.converged()) {
+    throw Error(
+        fmt::format("{}: the fit did not converge ({}); check the positions with "
+                    "'mpcal detect {}'",
+                    path,
+                    result.solve.message,
+                    path));
+  }
+  fmt::print("  {}: calibrated, {} positions, residual RMS {:.2g} m/s2\n",
+             path,
+             result.positions.size(),
+             result.solve.residual_rms_after_mps2);
+  return result.calibration;
+}
+
+void Run(RepeatFlags& f) {
+  for (const std::string& out : {f.json, f.csv}) {
+    if (out.empty()) continue;
+    for (const std::string& in : f.inputs) RefuseOverwritingInput(in, out);
+  }
+  f.calibrate.solve.gravity_mps2 = f.gravity.Resolve();
+  ThrowIfInvalid(f.calibrate.Validate(), "repeat");
+  ThrowIfInvalid(f.repeat.Validate(), "repeat");
+  if (f.inputs.size() < 2) {
+    throw Error(fmt::format(
+        "repeatability needs at least 2 sessions of the device, got {}: give two or more "
+        "recordings or calibration files",
+        f.inputs.size()));
+  }
+
+  std::vector<Calibration> trials;
+  fmt::print("{} sessions:\n", f.inputs.size());
+  for (const std::string& path : f.inputs) {
+    if (IsCalibrationFile(path)) {
+      trials.push_back(ReadCalibrationFile(path));
+      fmt::print("  {}: calibration file{}\n", path, trials.back().std ? "" : " (no 1σ)");
+    } else {
+      trials.push_back(CalibrateSession(path, f));
+    }
+  }
+  fmt::print("\n");
+
+  const RepeatabilityResult result = AnalyzeRepeatability(trials, f.inputs, f.repeat);
+  fmt::print("{}\n{}", FormatRepeatabilityTable(result), RepeatabilityVerdict(result));
+  for (const std::string& note : result.notes) fmt::print("note: {}\n", note);
+  if (!f.json.empty()) {
+    WriteFileAtomically(f.json, RepeatabilityToJson(result));
+    fmt::print("wrote {}\n", f.json);
+  }
+  if (!f.csv.empty()) {
+    WriteFileAtomically(f.csv, RepeatabilityToCsv(result));
+    fmt::print("wrote {}\n", f.csv);
+  }
+}
+
+}  // namespace
+
+void AddRepeatCommand(CLI::App& root) {
+  auto flags = std::make_shared<RepeatFlags>();
+  CLI::App* app = root.add_subcommand(
+      "repeat",
+      "Repeatability across sessions (the paper's Tables 4-6): each parameter per trial, "
+      "mean, population and sample standard deviation, and which parameters changed "
+      "between sessions beyond their 1σ: calibrate once, or before each use?");
+  app->add_option("SESSION_OR_CALIB",
+                  flags->inputs,
+                  "Two or more sessions of one device: logs (calibrated here with the "
+                  "options below) or calibration files (JSON from 'mpcal calibrate')")
+      ->required();
+  app->add_option(
+      "--json", flags->json, "Write the table as JSON (mpcal.repeatability/1, SI units)");
+  app->add_option("--csv", flags->csv, "Write the table as CSV (SI units)");
+  app->add_option(
+         "--significance",
+         flags->repeat.significance,
+         "Significance level of the test whether a parameter changed between "
+         "sessions beyond its 1σ (chi-square of the trials around their weighted "
+         "mean)")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-9, 0.5));
+  AddLogOptions(*app, flags->log);
+  AddGravityOptions(*app, flags->gravity);
+  AddCalibrateOptions(*app, flags->calibrate);
+  app->footer(
+      "Examples:\n"
+      "  mpcal repeat monday.csv tuesday.csv wednesday.csv --json repeat.json\n"
+      "  mpcal repeat trial1.json trial2.json trial3.json --csv repeat.csv\n"
+      "  mpcal repeat s1.csv s2.csv --units g --latitude -25.45 --height 920");
+  app->callback([flags] { Run(*flags); });
+}
+
+}  // namespace mpcal::cli

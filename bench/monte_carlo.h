@@ -1,0 +1,104 @@
+// Monte Carlo studies of the whole pipeline (simulate → detect → solve), as
+// a user runs it: sessions drawn at random within a stated envelope of
+// devices, and each estimate compared with the truth and with the
+// Cramér-Rao bound of its own session.
+#pragma once
+
+#include <cmath>
+#include <optional>
+#include <random>
+
+#include <Eigen/Core>
+
+#include "mpcal/calibrate.h"
+#include "mpcal/cramer_rao.h"
+#include "mpcal/error.h"
+#include "mpcal/simulate.h"
+
+namespace mpcal::bench {
+
+/// The envelope sessions are drawn from.
+struct Envelope {
+  double max_bias_g = 0.3;
+  double max_scale_error = 0.06;
+  double max_angle_rad = 0.02;
+  int min_positions = 14;
+  int max_positions = 30;
+  double min_rate_hz = 50.0;
+  double max_rate_hz = 200.0;
+  double noise_density_mps2_per_sqrt_hz = 0.002;
+};
+
+/// A session drawn from the envelope, in g or m/s² at random.
+inline SimulateStaticOptions DrawSession(const Envelope& e, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  SimulateStaticOptions o;
+  o.device = FindPreset("mti-g");
+  o.device.name = "random";
+  ErrorModel& m = o.device.truth;
+  for (int i = 0; i < 3; ++i) {
+    m.bias_mps2[i] = e.max_bias_g * kStandardGravityMps2 * u(rng);
+    m.scale_factor_error[i] = e.max_scale_error * u(rng);
+  }
+  m.theta_yz_rad = e.max_angle_rad * u(rng);
+  m.theta_zx_rad = e.max_angle_rad * u(rng);
+  m.theta_zy_rad = e.max_angle_rad * u(rng);
+  o.device.noise_density_mps2_per_sqrt_hz = e.noise_density_mps2_per_sqrt_hz;
+  o.device.range_mps2 = 0.0;
+  o.device.resolution_mps2 = 0.0;
+  std::uniform_int_distribution<int> positions(e.min_positions, e.max_positions);
+  o.positions = positions(rng);
+  o.rate_hz = e.min_rate_hz + (e.max_rate_hz - e.min_rate_hz) * 0.5 * (1.0 + u(rng));
+  o.units = u(rng) > 0.0 ? AccelUnits::kG : AccelUnits::kMps2;
+  o.seed = rng();
+  return o;
+}
+
+/// 1σ of the Cramér-Rao bound of a simulated session, with all its still
+/// samples (the detector trims settling, so an estimate can at best come
+/// within a few % of it). The initial rest is a static position too, and the
+/// estimator uses it: so does the bound, its direction being the truth
+/// applied to its mean.
+inline Eigen::Matrix<double, 9, 1> BoundSigma(const SimulatedSession& s,
+                                              double initial_rest_s) {
+  std::vector<BoundPosition> positions;
+  const double quantisation_var = std::pow(s.quantisation_step_mps2, 2) / 12.0;
+  const Eigen::Vector3d noise =
+      (s.noise_std_mps2.cwiseAbs2().array() + quantisation_var).sqrt().matrix();
+  const auto rest_samples = static_cast<std::size_t>(initial_rest_s * s.rate_hz);
+  if (rest_samples > 0) {
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < rest_samples; ++i) mean += s.recording.accel[i];
+    mean /= static_cast<double>(rest_samples);
+    positions.push_back({s.truth.Correct(mean).normalized(), noise, rest_samples});
+  }
+  for (std::size_t k = 0; k < s.directions.size(); ++k) {
+    positions.push_back({s.directions[k], noise, s.still_ranges[k].second - s.still_ranges[k].first});
+  }
+  return CramerRaoBound(s.truth.model, positions, s.truth.gravity_mps2).diagonal().cwiseSqrt();
+}
+
+/// One session through the pipeline: the error and the reported 1σ, both in
+/// units of the bound; nullopt when calibration failed (thrown or did not
+/// converge).
+struct Outcome {
+  Eigen::Matrix<double, 9, 1> error_over_bound;
+  Eigen::Matrix<double, 9, 1> reported_over_bound;
+};
+
+inline std::optional<Outcome> RunSession(const SimulateStaticOptions& options) {
+  const SimulatedSession s = SimulateStatic(options);
+  CalibrateOptions calibrate;
+  calibrate.solve.cross_validate = false;  // does not change the estimate
+  try {
+    const CalibrateResult r = CalibrateRecording(s.recording, calibrate);
+    if (!r.solve.converged()) return std::nullopt;
+    const Eigen::Matrix<double, 9, 1> bound = BoundSigma(s, options.initial_rest_s);
+    return Outcome{(ToVector(r.calibration.model) - ToVector(s.truth.model)).cwiseQuotient(bound),
+                   ToVector(*r.calibration.std).cwiseQuotient(bound)};
+  } catch (const Error&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace mpcal::bench

@@ -1,0 +1,96 @@
+/// \file apply.h
+/// \brief Applying a calibration to a log: every accelerometer row corrected
+/// by eqs 8-10 of METHOD.md, everything else copied as it is.
+///
+/// The log is streamed (LogScanner): memory does not grow with its length.
+/// Comments, the header, blank lines, the other columns, the delimiters and
+/// the line ends are copied byte for byte; only the three accelerometer
+/// numbers of each data row are replaced, written with std::to_chars in the
+/// shortest form that reads back to the same double.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mpcal/calibration.h"
+#include "mpcal/log_reader.h"
+#include "mpcal/units.h"
+
+namespace mpcal {
+
+/// A calibration made ready for many rows: the model of Calibration::Correct
+/// folded into one affine map, a = M·y − c, from a reading `y` in the log's
+/// units to the specific force in the output units. Equal to
+/// Calibration::Correct (scaled to the output units) to rounding.
+class Corrector {
+ public:
+  /// \param log_units units of the readings that will be corrected.
+  /// \param out_units units of the result; kCounts means "as the input
+  ///   scale": specific force / calibration.mps2_per_unit.
+  /// \throws mpcal::Error when the calibration does not apply to readings in
+  ///   `log_units` (see CheckCalibrationApplies) or is not finite.
+  Corrector(const Calibration& calibration, AccelUnits log_units, AccelUnits out_units);
+
+  Eigen::Vector3d operator()(const Eigen::Vector3d& reading) const {
+    return matrix_ * reading - offset_;
+  }
+  /// Output units per m/s² (1 for mps2, 1/9.80665 for g).
+  double out_per_mps2() const { return out_per_mps2_; }
+
+ private:
+  Eigen::Matrix3d matrix_;
+  Eigen::Vector3d offset_;
+  double out_per_mps2_ = 1.0;
+};
+
+/// Checks that a calibration can correct readings in `log_units`: m/s² and g
+/// convert exactly into each other; raw counts need a calibration made in
+/// counts (its nominal scale is a property of that sensor), and a counts
+/// calibration needs a log in counts.
+/// \throws mpcal::Error naming both units and what to do.
+void CheckCalibrationApplies(const Calibration& calibration, AccelUnits log_units);
+
+struct ApplyOptions {
+  /// How to read the input log (columns, delimiters, units, time unit). Its
+  /// `units` must match the calibration (CheckCalibrationApplies).
+  LogOptions log;
+  /// Units of the corrected accelerometer columns: kMps2 or kG. Empty: the
+  /// input's units, except for raw counts, whose corrected values are written
+  /// in m/s².
+  std::optional<AccelUnits> out_units;
+  /// A warning is given when the median corrected magnitude over the log's
+  /// quietest stretches differs from the calibration's gravity by more than
+  /// this fraction (wrong units or another sensor). 0.05 is far above what a
+  /// right calibration leaves (< 0.5 %) and far below a g/m/s² mix-up.
+  double rest_tolerance = 0.05;
+
+  /// Empty string when valid, otherwise names the first bad field.
+  std::string Validate() const;
+};
+
+struct ApplyResult {
+  std::size_t data_rows = 0;
+  /// Comment, header and blank lines copied.
+  std::size_t other_lines = 0;
+  AccelUnits out_units = AccelUnits::kMps2;
+  /// Median corrected |a| (m/s²) over the quietest stretches of the log's
+  /// start (up to about 260,000 rows); empty when the log has no rows.
+  std::optional<double> rest_magnitude_mps2;
+  /// For the user, one line each: the reader's (truncated last line, time
+  /// unit) and the magnitude-at-rest check.
+  std::vector<std::string> warnings;
+};
+
+/// Corrects the log `input` ("-": standard input) into `output` ("-":
+/// standard output; otherwise written atomically).
+/// \throws mpcal::Error for invalid options, a calibration that does not
+///   apply to the log's units, `output` naming the input, any error of
+///   LogScanner (no partial output file is left), or a write failure.
+ApplyResult ApplyCalibration(const Calibration& calibration, const std::string& input,
+                             const std::string& output, const ApplyOptions& options);
+
+}  // namespace mpcal

@@ -1,0 +1,449 @@
+#include "mpcal/calibration_file.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <string_view>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "mpcal/atomic_file.h"
+#include "mpcal/error.h"
+
+namespace mpcal {
+namespace {
+
+using nlohmann::json;
+
+constexpr std::string_view kFormatPrefix = "mpcal.accelerometer/";
+constexpr int kMajorVersion = 1;
+// Earth's gravity is 9.76-9.84 m/s² anywhere on its surface; outside this
+// band the value is in the wrong units or corrupt.
+constexpr double kMinGravityMps2 = 9.0;
+constexpr double kMaxGravityMps2 = 10.5;
+
+// ----- writing -----
+
+void CheckFinite(double v, const std::string& field) {
+  if (!std::isfinite(v)) {
+    throw Error(fmt::format("cannot write the calibration: '{}' is {} (not finite)", field, v));
+  }
+}
+
+json Vec3(const Eigen::Vector3d& v, const std::string& field) {
+  for (int i = 0; i < 3; ++i) CheckFinite(v[i], field);
+  return json::array({v.x(), v.y(), v.z()});
+}
+
+json Num(double v, const std::string& field) {
+  CheckFinite(v, field);
+  return v;
+}
+
+void PutModel(json& j, const ErrorModel& m, const std::string& prefix) {
+  j["bias_mps2"] = Vec3(m.bias_mps2, prefix + "bias_mps2");
+  j["scale_factor_error"] = Vec3(m.scale_factor_error, prefix + "scale_factor_error");
+  j["non_orthogonality_rad"] = {
+      {"yz", Num(m.theta_yz_rad, prefix + "non_orthogonality_rad.yz")},
+      {"zx", Num(m.theta_zx_rad, prefix + "non_orthogonality_rad.zx")},
+      {"zy", Num(m.theta_zy_rad, prefix + "non_orthogonality_rad.zy")}};
+}
+
+// ----- reading -----
+
+// Walks the document with the path of each field for messages.
+class Reader {
+ public:
+  explicit Reader(std::string origin) : origin_(std::move(origin)) {}
+
+  [[noreturn]] void Fail(const std::string& message) const {
+    throw Error(fmt::format("calibration file '{}': {}", origin_, message));
+  }
+
+  static std::string Join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
+
+  static std::string TypeName(const json& j) {
+    if (j.is_number()) return "a number";
+    if (j.is_string()) return "a string";
+    if (j.is_boolean()) return "true/false";
+    if (j.is_null()) return "null";
+    if (j.is_array()) return "an array";
+    return "an object";
+  }
+
+  const json& Field(const json& object, const std::string& path, const std::string& key) const {
+    const auto it = object.find(key);
+    if (it == object.end()) Fail(fmt::format("missing field '{}'", Join(path, key)));
+    return *it;
+  }
+
+  const json& Object(const json& object, const std::string& path, const std::string& key) const {
+    const json& j = Field(object, path, key);
+    if (!j.is_object()) {
+      Fail(fmt::format("field '{}' must be an object, found {}", Join(path, key), TypeName(j)));
+    }
+    return j;
+  }
+
+  double Number(const json& object, const std::string& path, const std::string& key) const {
+    return NumberValue(Field(object, path, key), Join(path, key));
+  }
+
+  double NumberValue(const json& j, const std::string& field) const {
+    // JSON has no NaN or infinity: nlohmann writes them as null.
+    if (j.is_null()) Fail(fmt::format("field '{}' is null (a non-finite value?)", field));
+    if (!j.is_number()) {
+      Fail(fmt::format("field '{}' must be a number, found {}", field, TypeName(j)));
+    }
+    const double v = j.get<double>();
+    if (!std::isfinite(v)) Fail(fmt::format("field '{}' is not finite", field));
+    return v;
+  }
+
+  std::optional<double> OptionalNumber(const json& object, const std::string& path,
+                                       const std::string& key) const {
+    if (!object.contains(key)) return std::nullopt;
+    return Number(object, path, key);
+  }
+
+  // `max` defaults to what an int holds: most integer fields are ints, and a
+  // larger value must not wrap around to a negative one (found by fuzzing).
+  long long Integer(const json& object, const std::string& path, const std::string& key,
+                    long long min,
+                    long long max = std::numeric_limits<int>::max()) const {
+    const json& j = Field(object, path, key);
+    if (!j.is_number_integer()) {
+      Fail(fmt::format("field '{}' must be an integer, found {}", Join(path, key),
+                       j.is_number() ? "a fractional number" : TypeName(j)));
+    }
+    if (j.is_number_unsigned() &&
+        j.get<unsigned long long>() > static_cast<unsigned long long>(max)) {
+      Fail(fmt::format("field '{}' must be at most {}, found {}", Join(path, key), max,
+                       j.get<unsigned long long>()));
+    }
+    const long long v = j.get<long long>();
+    if (v < min) Fail(fmt::format("field '{}' must be at least {}, found {}", Join(path, key), min, v));
+    if (v > max) Fail(fmt::format("field '{}' must be at most {}, found {}", Join(path, key), max, v));
+    return v;
+  }
+
+  bool Bool(const json& object, const std::string& path, const std::string& key) const {
+    const json& j = Field(object, path, key);
+    if (!j.is_boolean()) {
+      Fail(fmt::format("field '{}' must be true or false, found {}", Join(path, key),
+                       TypeName(j)));
+    }
+    return j.get<bool>();
+  }
+
+  std::string String(const json& object, const std::string& path, const std::string& key) const {
+    const json& j = Field(object, path, key);
+    if (!j.is_string()) {
+      Fail(fmt::format("field '{}' must be a string, found {}", Join(path, key), TypeName(j)));
+    }
+    return j.get<std::string>();
+  }
+
+  Eigen::Vector3d Vector(const json& object, const std::string& path, const std::string& key) const {
+    const json& j = Field(object, path, key);
+    const std::string field = Join(path, key);
+    if (!j.is_array() || j.size() != 3) {
+      Fail(fmt::format("field '{}' must be an array of 3 numbers (x, y, z), found {}", field,
+                       j.is_array() ? fmt::format("{} elements", j.size()) : TypeName(j)));
+    }
+    Eigen::Vector3d v;
+    for (int i = 0; i < 3; ++i) v[i] = NumberValue(j[i], fmt::format("{}[{}]", field, i));
+    return v;
+  }
+
+  ErrorModel Model(const json& object, const std::string& path, bool is_std) const {
+    ErrorModel m;
+    m.bias_mps2 = Vector(object, path, "bias_mps2");
+    m.scale_factor_error = Vector(object, path, "scale_factor_error");
+    const json& angles = Object(object, path, "non_orthogonality_rad");
+    const std::string apath = Join(path, "non_orthogonality_rad");
+    m.theta_yz_rad = Number(angles, apath, "yz");
+    m.theta_zx_rad = Number(angles, apath, "zx");
+    m.theta_zy_rad = Number(angles, apath, "zy");
+    if (is_std) {
+      const auto v = ToVector(m);
+      for (int i = 0; i < kNumModelParameters; ++i) {
+        if (v[i] < 0.0) {
+          Fail(fmt::format("'{}' has a negative standard deviation ({} = {})", path,
+                           kParameterNames[i], v[i]));
+        }
+      }
+    } else {
+      for (int i = 0; i < 3; ++i) {
+        if (!(m.scale_factor_error[i] > -0.5 && m.scale_factor_error[i] < 0.5)) {
+          Fail(fmt::format("'{}scale_factor_error[{}]' = {} is outside (-0.5, 0.5): the axis "
+                           "would read {:.3g} times the true value",
+                           path.empty() ? "" : path + ".", i, m.scale_factor_error[i],
+                           1.0 + m.scale_factor_error[i]));
+        }
+      }
+      for (auto [name, v] : {std::pair{"yz", m.theta_yz_rad}, std::pair{"zx", m.theta_zx_rad},
+                             std::pair{"zy", m.theta_zy_rad}}) {
+        if (std::abs(v) >= std::numbers::pi / 4) {
+          Fail(fmt::format("'non_orthogonality_rad.{}' = {} rad is not a small angle "
+                           "(|angle| must be below pi/4)",
+                           name, v));
+        }
+      }
+    }
+    return m;
+  }
+
+ private:
+  std::string origin_;
+};
+
+}  // namespace
+
+std::string CalibrationToJson(const Calibration& c) {
+  json j;
+  j["format"] = kCalibrationFormat;
+  j["model"] = std::string(ToString(c.model_kind));
+  j["gravity_mps2"] = Num(c.gravity_mps2, "gravity_mps2");
+  j["input"] = {{"units", std::string(ToString(c.input_units))},
+                {"mps2_per_unit", Num(c.mps2_per_unit, "input.mps2_per_unit")}};
+  PutModel(j, c.model, "");
+  if (c.std) {
+    json s;
+    PutModel(s, *c.std, "std.");
+    j["std"] = s;
+  }
+  if (c.fit) {
+    const FitSummary& f = *c.fit;
+    json fit = {{"positions", f.positions},
+                {"residual_rms_before_mps2",
+                 Num(f.residual_rms_before_mps2, "fit.residual_rms_before_mps2")},
+                {"residual_rms_after_mps2",
+                 Num(f.residual_rms_after_mps2, "fit.residual_rms_after_mps2")},
+                {"iterations", f.iterations},
+                {"converged", f.converged},
+                {"excluded_positions", f.excluded_positions}};
+    if (f.variance_factor) fit["variance_factor"] = Num(*f.variance_factor, "fit.variance_factor");
+    if (f.cross_validation_rms_mps2) {
+      fit["cross_validation_rms_mps2"] =
+          Num(*f.cross_validation_rms_mps2, "fit.cross_validation_rms_mps2");
+    }
+    j["fit"] = fit;
+  }
+  json positions = json::array();
+  for (std::size_t i = 0; i < c.positions.size(); ++i) {
+    const PositionSummary& p = c.positions[i];
+    const std::string at = fmt::format("positions[{}].", i);
+    json q = {{"start_s", Num(p.start_s, at + "start_s")},
+              {"end_s", Num(p.end_s, at + "end_s")},
+              {"samples", p.samples},
+              {"mean_mps2", Vec3(p.mean_mps2, at + "mean_mps2")},
+              {"sample_std_mps2", Vec3(p.sample_std_mps2, at + "sample_std_mps2")},
+              {"residual_before_mps2", Num(p.residual_before_mps2, at + "residual_before_mps2")},
+              {"residual_after_mps2", Num(p.residual_after_mps2, at + "residual_after_mps2")},
+              {"used", p.used}};
+    if (p.cross_validation_residual_mps2) {
+      q["cross_validation_residual_mps2"] =
+          Num(*p.cross_validation_residual_mps2, at + "cross_validation_residual_mps2");
+    }
+    positions.push_back(std::move(q));
+  }
+  j["positions"] = std::move(positions);
+  j["warnings"] = c.warnings;
+  if (c.provenance) {
+    j["provenance"] = {{"mpcal_version", c.provenance->mpcal_version},
+                       {"input", c.provenance->input},
+                       {"options", c.provenance->options}};
+  }
+  // Invalid UTF-8 in a path or message is replaced rather than thrown about.
+  return j.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
+}
+
+Calibration CalibrationFromJson(const std::string& text, const std::string& origin) {
+  const Reader r(origin);
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::exception& e) {
+    std::string what = e.what();
+    // Drop nlohmann's "[json.exception.parse_error.101] " prefix; keep
+    // "parse error at line L, column C: ...".
+    const auto bracket = what.find("] ");
+    if (bracket != std::string::npos) what = what.substr(bracket + 2);
+    if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
+      r.Fail("the file is empty; expected a JSON calibration written by 'mpcal calibrate'");
+    }
+    r.Fail(fmt::format("not valid JSON: {}", what));
+  }
+  if (!j.is_object()) {
+    r.Fail(fmt::format("expected a JSON object with \"format\": \"{}\", found {}",
+                       kCalibrationFormat, Reader::TypeName(j)));
+  }
+  if (!j.contains("format")) {
+    r.Fail(fmt::format("no 'format' field: not an mpcal calibration file (expected \"format\": "
+                       "\"{}\")",
+                       kCalibrationFormat));
+  }
+  const std::string format = r.String(j, "", "format");
+  if (format.rfind(kFormatPrefix, 0) != 0) {
+    r.Fail(fmt::format("unknown format '{}'; expected '{}'", format, kCalibrationFormat));
+  }
+  {
+    const std::string version = format.substr(kFormatPrefix.size());
+    const std::string major = version.substr(0, version.find('.'));
+    const bool digits = !major.empty() && major.size() < 6 &&
+                        major.find_first_not_of("0123456789") == std::string::npos;
+    if (!digits) r.Fail(fmt::format("unknown format '{}'; expected '{}'", format, kCalibrationFormat));
+    if (std::stoi(major) != kMajorVersion) {
+      r.Fail(fmt::format("format '{}' is version {} of the calibration file; this mpcal reads "
+                         "version {} ('{}'): use the mpcal that wrote it, or a newer mpcal",
+                         format, major, kMajorVersion, kCalibrationFormat));
+    }
+  }
+
+  Calibration c;
+  const std::string model = r.String(j, "", "model");
+  const auto kind = ParseModelKind(model);
+  if (!kind) {
+    r.Fail(fmt::format("unknown model '{}' (known: {}, {})", model,
+                       ToString(ModelKind::kShinElSheimy9), ToString(ModelKind::kBiasScale6)));
+  }
+  c.model_kind = *kind;
+  c.gravity_mps2 = r.Number(j, "", "gravity_mps2");
+  if (c.gravity_mps2 < kMinGravityMps2 || c.gravity_mps2 > kMaxGravityMps2) {
+    r.Fail(fmt::format("'gravity_mps2' = {} is not a magnitude of gravity on Earth (m/s²)",
+                       c.gravity_mps2));
+  }
+  const json& input = r.Object(j, "", "input");
+  const std::string units = r.String(input, "input", "units");
+  const auto parsed_units = ParseAccelUnits(units);
+  if (!parsed_units) {
+    r.Fail(fmt::format("unknown units '{}' in 'input.units' (known: mps2, g, counts)", units));
+  }
+  c.input_units = *parsed_units;
+  c.mps2_per_unit = r.Number(input, "input", "mps2_per_unit");
+  if (c.mps2_per_unit <= 0.0) {
+    r.Fail(fmt::format("'input.mps2_per_unit' must be positive, found {}", c.mps2_per_unit));
+  }
+  if (const auto fixed = FixedMps2PerUnit(c.input_units);
+      fixed && std::abs(c.mps2_per_unit - *fixed) > 1e-9 * *fixed) {
+    r.Fail(fmt::format("'input.mps2_per_unit' is {} but units '{}' mean {} m/s² per unit",
+                       c.mps2_per_unit, units, *fixed));
+  }
+  c.model = r.Model(j, "", false);
+  if (c.model_kind == ModelKind::kBiasScale6 &&
+      (c.model.theta_yz_rad != 0.0 || c.model.theta_zx_rad != 0.0 ||
+       c.model.theta_zy_rad != 0.0)) {
+    r.Fail("model 'bias-scale-6' has no non-orthogonality, but 'non_orthogonality_rad' is not "
+           "zero");
+  }
+  if (j.contains("std")) {
+    r.Object(j, "", "std");
+    c.std = r.Model(j["std"], "std", true);
+  }
+  if (j.contains("fit")) {
+    const json& f = r.Object(j, "", "fit");
+    FitSummary fit;
+    fit.positions = static_cast<int>(r.Integer(f, "fit", "positions", 0));
+    fit.residual_rms_before_mps2 = r.Number(f, "fit", "residual_rms_before_mps2");
+    fit.residual_rms_after_mps2 = r.Number(f, "fit", "residual_rms_after_mps2");
+    fit.iterations = static_cast<int>(r.Integer(f, "fit", "iterations", 0));
+    fit.converged = r.Bool(f, "fit", "converged");
+    if (f.contains("excluded_positions")) {
+      fit.excluded_positions = static_cast<int>(r.Integer(f, "fit", "excluded_positions", 0));
+    }
+    fit.variance_factor = r.OptionalNumber(f, "fit", "variance_factor");
+    fit.cross_validation_rms_mps2 = r.OptionalNumber(f, "fit", "cross_validation_rms_mps2");
+    c.fit = fit;
+  }
+  if (j.contains("positions")) {
+    const json& ps = j["positions"];
+    if (!ps.is_array()) {
+      r.Fail(fmt::format("field 'positions' must be an array, found {}", Reader::TypeName(ps)));
+    }
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      const std::string at = fmt::format("positions[{}]", i);
+      if (!ps[i].is_object()) {
+        r.Fail(fmt::format("'{}' must be an object, found {}", at, Reader::TypeName(ps[i])));
+      }
+      const json& q = ps[i];
+      PositionSummary p;
+      p.start_s = r.Number(q, at, "start_s");
+      p.end_s = r.Number(q, at, "end_s");
+      p.samples = static_cast<std::size_t>(
+          r.Integer(q, at, "samples", 0, std::numeric_limits<long long>::max()));
+      p.mean_mps2 = r.Vector(q, at, "mean_mps2");
+      p.sample_std_mps2 = r.Vector(q, at, "sample_std_mps2");
+      p.residual_before_mps2 = r.Number(q, at, "residual_before_mps2");
+      p.residual_after_mps2 = r.Number(q, at, "residual_after_mps2");
+      p.cross_validation_residual_mps2 = r.OptionalNumber(q, at, "cross_validation_residual_mps2");
+      p.used = q.contains("used") ? r.Bool(q, at, "used") : true;
+      c.positions.push_back(p);
+    }
+  }
+  if (j.contains("warnings")) {
+    const json& w = j["warnings"];
+    if (!w.is_array()) {
+      r.Fail(fmt::format("field 'warnings' must be an array of strings, found {}",
+                         Reader::TypeName(w)));
+    }
+    for (std::size_t i = 0; i < w.size(); ++i) {
+      if (!w[i].is_string()) {
+        r.Fail(fmt::format("'warnings[{}]' must be a string, found {}", i,
+                           Reader::TypeName(w[i])));
+      }
+      c.warnings.push_back(w[i].get<std::string>());
+    }
+  }
+  if (j.contains("provenance")) {
+    const json& p = r.Object(j, "", "provenance");
+    Provenance prov;
+    prov.mpcal_version = r.String(p, "provenance", "mpcal_version");
+    prov.input = r.String(p, "provenance", "input");
+    prov.options = r.String(p, "provenance", "options");
+    c.provenance = prov;
+  }
+  return c;
+}
+
+Calibration ReadCalibrationFile(const std::string& path) {
+  std::error_code ec;
+  if (path != "-" && std::filesystem::is_directory(path, ec)) {
+    throw Error(fmt::format("calibration file '{}' is a directory; give the JSON file written "
+                            "by 'mpcal calibrate'",
+                            path));
+  }
+  std::stringstream content;
+  if (path == "-") {
+    content << std::cin.rdbuf();
+  } else {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+      throw Error(fmt::format("cannot read calibration file '{}': {}", path,
+                              std::strerror(errno)));
+    }
+    content << in.rdbuf();
+    if (in.bad()) throw Error(fmt::format("error reading calibration file '{}'", path));
+  }
+  // A calibration file is a few kilobytes; a huge one is not ours.
+  const std::string text = content.str();
+  if (text.size() > (std::size_t{64} << 20)) {
+    throw Error(fmt::format("'{}' is too large to be a calibration file", path));
+  }
+  return CalibrationFromJson(text, path == "-" ? "<stdin>" : path);
+}
+
+void WriteCalibrationFile(const std::string& path, const Calibration& calibration) {
+  WriteFileAtomically(path, CalibrationToJson(calibration));
+}
+
+}  // namespace mpcal

@@ -1,0 +1,257 @@
+// The repeatability table as JSON ("mpcal.repeatability/1") and CSV.
+#include <cmath>
+#include <string_view>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "mpcal/error.h"
+#include "mpcal/repeat.h"
+
+namespace mpcal {
+namespace {
+
+// Ordered: the keys come out in the order.
+using json = nlohmann::ordered_json;
+
+constexpr std::string_view kFormatPrefix = "mpcal.repeatability/";
+// The JSON groups of the packed parameters: name, first packed index, and
+// whether the group is a vector (x, y, z) or an object of scalar angles.
+constexpr std::array<std::string_view, 3> kAngleKeys = {"yz", "zx", "zy"};
+
+json ChangedJson(const ParameterRepeatability& p) {
+  return p.changed ? json(*p.changed) : json(nullptr);
+}
+
+// One vector group (bias or scale) from packed parameters first..first+2.
+json VectorGroup(const RepeatabilityResult& r, int first) {
+  json values = json::array();
+  for (int t = 0; t < r.trials; ++t) {
+    json row = json::array();
+    for (int a = 0; a < 3; ++a) row.push_back(r.parameters[first + a].values[t]);
+    values.push_back(row);
+  }
+  json mean = json::array(), pop = json::array(), sample = json::array(),
+       changed = json::array();
+  for (int a = 0; a < 3; ++a) {
+    const ParameterRepeatability& p = r.parameters[first + a];
+    mean.push_back(p.mean);
+    pop.push_back(p.std_population);
+    sample.push_back(p.std_sample);
+    changed.push_back(ChangedJson(p));
+  }
+  return json{{"values", values},
+              {"mean", mean},
+              {"std_population", pop},
+              {"std_sample", sample},
+              {"changed", changed}};
+}
+
+json ScalarGroup(const ParameterRepeatability& p) {
+  return json{{"values", p.values},
+              {"mean", p.mean},
+              {"std_population", p.std_population},
+              {"std_sample", p.std_sample},
+              {"changed", ChangedJson(p)}};
+}
+
+// Reading: every accessor names the field's path in the message.
+class Reader {
+ public:
+  explicit Reader(std::string origin) : origin_(std::move(origin)) {}
+
+  [[noreturn]] void Fail(const std::string& path, const std::string& what) const {
+    throw Error(
+        fmt::format("{}: {}: {} (is this a file written by 'mpcal repeat --json'?)",
+                    origin_,
+                    path,
+                    what));
+  }
+
+  const json& Field(const json& object,
+                    const std::string& path,
+                    std::string_view key) const {
+    if (!object.is_object()) Fail(path, "expected an object");
+    const auto it = object.find(key);
+    if (it == object.end()) Fail(path, fmt::format("missing field \"{}\"", key));
+    return *it;
+  }
+
+  double Number(const json& value, const std::string& path) const {
+    if (!value.is_number()) Fail(path, "expected a number");
+    const double v = value.get<double>();
+    if (!std::isfinite(v)) Fail(path, "not a finite number");
+    return v;
+  }
+
+  const json& Array(const json& value, const std::string& path, std::size_t size) const {
+    if (!value.is_array()) Fail(path, "expected an array");
+    if (value.size() != size) {
+      Fail(path, fmt::format("expected {} entries, found {}", size, value.size()));
+    }
+    return value;
+  }
+
+  std::optional<bool> Changed(const json& value, const std::string& path) const {
+    if (value.is_null()) return std::nullopt;
+    if (!value.is_boolean()) Fail(path, "expected true, false or null");
+    return value.get<bool>();
+  }
+
+ private:
+  std::string origin_;
+};
+
+void ReadVectorGroup(const Reader& in,
+                     const json& group,
+                     const std::string& path,
+                     int trials,
+                     int first,
+                     RepeatabilityResult& r) {
+  const json& values = in.Array(in.Field(group, path, "values"),
+                                path + ".values",
+                                static_cast<std::size_t>(trials));
+  for (int t = 0; t < trials; ++t) {
+    const std::string row_path = fmt::format("{}.values[{}]", path, t);
+    const json& row = in.Array(values[t], row_path, 3);
+    for (int a = 0; a < 3; ++a) {
+      r.parameters[first + a].values.push_back(
+          in.Number(row[a], fmt::format("{}[{}]", row_path, a)));
+    }
+  }
+  for (std::string_view key : {"mean", "std_population", "std_sample", "changed"}) {
+    const std::string field_path = fmt::format("{}.{}", path, key);
+    const json& arr = in.Array(in.Field(group, path, key), field_path, 3);
+    for (int a = 0; a < 3; ++a) {
+      ParameterRepeatability& p = r.parameters[first + a];
+      const std::string item = fmt::format("{}[{}]", field_path, a);
+      if (key == "mean") p.mean = in.Number(arr[a], item);
+      if (key == "std_population") p.std_population = in.Number(arr[a], item);
+      if (key == "std_sample") p.std_sample = in.Number(arr[a], item);
+      if (key == "changed") p.changed = in.Changed(arr[a], item);
+    }
+  }
+}
+
+void ReadScalarGroup(const Reader& in,
+                     const json& group,
+                     const std::string& path,
+                     int trials,
+                     ParameterRepeatability& p) {
+  const json& values = in.Array(in.Field(group, path, "values"),
+                                path + ".values",
+                                static_cast<std::size_t>(trials));
+  for (int t = 0; t < trials; ++t) {
+    p.values.push_back(in.Number(values[t], fmt::format("{}.values[{}]", path, t)));
+  }
+  p.mean = in.Number(in.Field(group, path, "mean"), path + ".mean");
+  p.std_population =
+      in.Number(in.Field(group, path, "std_population"), path + ".std_population");
+  p.std_sample = in.Number(in.Field(group, path, "std_sample"), path + ".std_sample");
+  p.changed = in.Changed(in.Field(group, path, "changed"), path + ".changed");
+}
+
+// CSV cells: shortest round-trip representation, empty when absent.
+std::string Cell(const std::optional<double>& v) {
+  return v ? fmt::format("{}", *v) : "";
+}
+
+}  // namespace
+
+std::string RepeatabilityToJson(const RepeatabilityResult& result) {
+  json angles = json::object();
+  for (std::size_t k = 0; k < kAngleKeys.size(); ++k) {
+    angles[std::string(kAngleKeys[k])] = ScalarGroup(result.parameters[6 + k]);
+  }
+  json out;
+  out["format"] = kRepeatabilityFormat;
+  out["trials"] = result.trials;
+  json parameters;
+  parameters["bias_mps2"] = VectorGroup(result, 0);
+  parameters["scale_factor_error"] = VectorGroup(result, 3);
+  parameters["non_orthogonality_rad"] = angles;
+  out["parameters"] = parameters;
+  return out.dump(2) + "\n";
+}
+
+RepeatabilityResult RepeatabilityFromJson(const std::string& text,
+                                          const std::string& origin) {
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::exception& e) {
+    // parse_error for bad syntax, out_of_range for a number beyond a double.
+    throw Error(fmt::format("{}: not valid JSON: {}", origin, e.what()));
+  }
+  const Reader in(origin);
+  const json& format = in.Field(doc, "(top level)", "format");
+  if (!format.is_string()) in.Fail("format", "expected a string");
+  const std::string tag = format.get<std::string>();
+  if (tag.rfind(kFormatPrefix, 0) != 0) {
+    in.Fail("format",
+            fmt::format("\"{}\" is not a repeatability table (expected \"{}\")",
+                        tag,
+                        kRepeatabilityFormat));
+  }
+  const std::string version = tag.substr(kFormatPrefix.size());
+  if (version != "1" && version.rfind("1.", 0) != 0) {
+    in.Fail("format",
+            fmt::format("version \"{}\" is not supported by this mpcal (it reads {})",
+                        version,
+                        kRepeatabilityFormat));
+  }
+  const json& trials_json = in.Field(doc, "(top level)", "trials");
+  if (!trials_json.is_number_integer() || trials_json.get<long long>() < 2 ||
+      trials_json.get<long long>() > 1000000) {
+    in.Fail("trials", "expected an integer of at least 2");
+  }
+  RepeatabilityResult r;
+  r.trials = static_cast<int>(trials_json.get<long long>());
+  for (int t = 0; t < r.trials; ++t)
+    r.trial_names.push_back(fmt::format("trial {}", t + 1));
+  const json& parameters = in.Field(doc, "(top level)", "parameters");
+  ReadVectorGroup(in,
+                  in.Field(parameters, "parameters", "bias_mps2"),
+                  "parameters.bias_mps2",
+                  r.trials,
+                  0,
+                  r);
+  ReadVectorGroup(in,
+                  in.Field(parameters, "parameters", "scale_factor_error"),
+                  "parameters.scale_factor_error",
+                  r.trials,
+                  3,
+                  r);
+  const json& angles = in.Field(parameters, "parameters", "non_orthogonality_rad");
+  for (std::size_t k = 0; k < kAngleKeys.size(); ++k) {
+    const std::string path =
+        fmt::format("parameters.non_orthogonality_rad.{}", kAngleKeys[k]);
+    ReadScalarGroup(in,
+                    in.Field(angles, "parameters.non_orthogonality_rad", kAngleKeys[k]),
+                    path,
+                    r.trials,
+                    r.parameters[6 + k]);
+  }
+  return r;
+}
+
+std::string RepeatabilityToCsv(const RepeatabilityResult& result) {
+  std::string out = "parameter";
+  for (int t = 0; t < result.trials; ++t) out += fmt::format(",trial_{}", t + 1);
+  out += ",mean,std_population,std_sample,changed,chi2,p_value\n";
+  for (int p = 0; p < kNumModelParameters; ++p) {
+    const ParameterRepeatability& row = result.parameters[static_cast<std::size_t>(p)];
+    out += kParameterNames[static_cast<std::size_t>(p)];
+    for (double v : row.values) out += fmt::format(",{}", v);
+    out += fmt::format(",{},{},{},{},{},{}\n",
+                       row.mean,
+                       row.std_population,
+                       row.std_sample,
+                       row.changed ? (*row.changed ? "true" : "false") : "",
+                       Cell(row.chi2),
+                       Cell(row.p_value));
+  }
+  return out;
+}
+
+}  // namespace mpcal

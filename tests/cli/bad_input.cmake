@@ -1,0 +1,148 @@
+# Input that cannot hurt: every subcommand that reads files, fed what users
+# feed it by mistake. Each case: exit 1 (2 for a bad flag), exactly one line
+# `mpcal: error: ...` (expect.sh checks it), a message that names the
+# problem, and no output file left behind. The malformed files are in
+# tests/data/bad/ (README there); a few cases are regression tests of fixes.
+set(BAD ${MPCAL_TEST_DATA}/bad)
+set(GOOD_CALIB ${BAD}/valid_calib.json)
+set(GOOD_LOG ${BAD}/too_few_positions.csv)  # reads fine, too few positions
+set(GOOD_GNSS ${MPCAL_TEST_DATA}/gnss_rtklib_walk_excerpt.pos)
+
+# Logs: (case name, path, message). The same files go to every reader.
+set(bad_logs
+  missing      no/such/log.csv             "cannot read log 'no/such/log.csv': No such file"
+  directory    ${BAD}                      "is a directory. give the path of a log file"
+  empty        ${BAD}/empty.csv            "is empty"
+  header_only  ${BAD}/header_only.csv      "header .*no data rows"
+  prose        ${BAD}/prose.txt            "prose.txt:[0-9]+: .*not a number"
+  binary       ${BAD}/binary.bin           "is not a text log \\(binary data at byte 8\\)"
+  binary_text  ${BAD}/binary_no_nul.bin    "is not a text log \\(control characters"
+  few_columns  ${BAD}/too_few_columns.csv  "no column for az in the header"
+  three_columns ${BAD}/three_columns_no_header.csv "found 3, expected at least 4"
+  nan          ${BAD}/nan.csv              "nan.csv:3: non-finite value 'nan' in column 'ax'"
+  infinity     ${BAD}/infinity.csv         "infinity.csv:3: non-finite value 'inf' in column 'az'")
+
+# Calibration files: (case name, path, message).
+set(bad_calibs
+  missing      no/such/calib.json          "cannot read calibration file 'no/such/calib.json'"
+  directory    ${BAD}                      "is a directory. give the JSON file"
+  empty        ${BAD}/empty.csv            "the file is empty. expected a JSON calibration"
+  prose        ${BAD}/prose.txt            "not valid JSON: parse error at line 1, column 1"
+  binary       ${BAD}/binary.bin           "not valid JSON"
+  malformed    ${BAD}/malformed.json       "not valid JSON: parse error at line 3"
+  not_object   ${BAD}/not_an_object.json   "expected a JSON object .* found an array"
+  version2     ${BAD}/version2.json        "format 'mpcal.accelerometer/2' is version 2 .* this mpcal reads version 1"
+  overflow     ${BAD}/nonfinite.json       "number overflow parsing '1e999'"
+  null_value   ${BAD}/null_value.json      "field 'bias_mps2\\[1\\]' is null")
+# repeat tells calibration files from logs by their .json name: the others
+# are logs to it (and covered above).
+set(bad_calib_json ${bad_calibs})
+list(REMOVE_AT bad_calib_json 3 4 5 6 7 8 9 10 11 12 13 14)
+
+# Runs the cases of `list` (triplets) as NAME_PREFIX_<case>, with @IN@ in the
+# arguments replaced by the case's path.
+function(bad_input_cases prefix list absent)
+  set(args ${ARGN})
+  list(LENGTH list n)
+  math(EXPR last "${n} - 1")
+  foreach(i RANGE 0 ${last} 3)
+    math(EXPR j "${i} + 1")
+    math(EXPR k "${i} + 2")
+    list(GET list ${i} name)
+    list(GET list ${j} path)
+    list(GET list ${k} match)
+    list(TRANSFORM args REPLACE "^@IN@$" "${path}" OUTPUT_VARIABLE case_args)
+    mpcal_cli_test(${prefix}_${name} EXIT 1 MATCH "${match}" ABSENT ${absent}
+      ARGS ${case_args})
+  endforeach()
+endfunction()
+
+bad_input_cases(bad_calibrate "${bad_logs}" out.json calibrate @IN@ -o out.json)
+bad_input_cases(bad_detect "${bad_logs}" out.json detect @IN@ --json out.json)
+bad_input_cases(bad_apply_log "${bad_logs}" out.csv apply ${GOOD_CALIB} @IN@ -o out.csv)
+bad_input_cases(bad_repeat_log "${bad_logs}" out.json repeat ${GOOD_CALIB} @IN@ --json out.json)
+bad_input_cases(bad_verify_imu "${bad_logs}" out.json
+  verify --imu @IN@ --gnss ${GOOD_GNSS} -o out.json)
+bad_input_cases(bad_apply_calib "${bad_calibs}" out.csv apply @IN@ ${GOOD_LOG} -o out.csv)
+bad_input_cases(bad_repeat_calib "${bad_calib_json}" out.json repeat ${GOOD_CALIB} @IN@ --json out.json)
+bad_input_cases(bad_verify_calib "${bad_calibs}" out.json
+  verify --imu ${GOOD_LOG} --gnss ${GOOD_GNSS} --calib @IN@ -o out.json)
+
+# Sessions that read but cannot be calibrated.
+mpcal_cli_test(bad_calibrate_never_still EXIT 1 MATCH "no static position found .* never stops moving"
+  ABSENT out.json ARGS calibrate ${BAD}/never_still.csv -o out.json)
+mpcal_cli_test(bad_detect_never_still EXIT 1 MATCH "no static position found .* never stops moving"
+  ARGS detect ${BAD}/never_still.csv)
+mpcal_cli_test(bad_calibrate_too_few_positions EXIT 1
+  MATCH "5 static positions.* needs at least 10"
+  ABSENT out.json ARGS calibrate ${BAD}/too_few_positions.csv -o out.json)
+mpcal_cli_test(bad_detect_too_few_positions EXIT 1 MATCH "record 5 more positions"
+  ARGS detect ${BAD}/too_few_positions.csv)
+# Turned only about x: x never sees gravity, its bias and scale are free.
+mpcal_cli_test(bad_calibrate_one_axis EXIT 1
+  MATCH "do not determine .*bias_x_mps2.*scale_factor_error_x|do not determine all 9 parameters"
+  ABSENT out.json ARGS calibrate ${BAD}/one_axis_rotation.csv -o out.json)
+mpcal_cli_test(bad_detect_one_axis EXIT 1 MATCH "do not determine all 9 parameters"
+  ARGS detect ${BAD}/one_axis_rotation.csv)
+mpcal_cli_test(bad_repeat_one_axis EXIT 1 MATCH "one_axis_rotation.csv: .*do not determine"
+  ABSENT out.json ARGS repeat ${GOOD_CALIB} ${BAD}/one_axis_rotation.csv --json out.json)
+mpcal_cli_test(bad_repeat_single_session EXIT 1 MATCH "at least 2 sessions"
+  ABSENT out.json ARGS repeat ${GOOD_CALIB} --json out.json)
+
+# The GNSS reference of verify. A missing one is input (exit 1), not usage
+# (regression: it was a CLI11 file check, exit 2).
+set(bad_gnss
+  missing      no/such/ref.pos             "no/such/ref.pos: cannot open the GNSS reference file"
+  directory    ${BAD}                      "is a directory, not a GNSS reference file"
+  empty        ${BAD}/empty.csv            "the reference file is empty"
+  prose        ${BAD}/prose.txt            "first line must be a header"
+  binary       ${BAD}/binary.bin           "cannot tell the format of the reference")
+bad_input_cases(bad_verify_gnss "${bad_gnss}" out.json
+  verify --imu ${GOOD_LOG} --gnss @IN@ -o out.json)
+
+# Outputs: never over an input (same path, another spelling, a link), never
+# half-written. Each runs on a copy in its own directory, so that a
+# regression cannot damage the checked-in files.
+function(bad_output_case name match script)
+  add_test(NAME cli.${name}
+    COMMAND ${MPCAL_CLI_EXPECT} 1 ${match} --workdir ${CMAKE_CURRENT_BINARY_DIR}/${name}
+            -- sh -c "cp '${GOOD_LOG}' log.csv && cp '${GOOD_CALIB}' calib.json && ${script}"
+            $<TARGET_FILE:mpcal_cli>)
+  set_tests_properties(cli.${name} PROPERTIES LABELS cli)
+endfunction()
+set(same "is the input file")
+bad_output_case(bad_output_calibrate_same ${same} "exec \"$0\" calibrate log.csv -o log.csv")
+bad_output_case(bad_output_detect_same ${same} "exec \"$0\" detect log.csv --json ./log.csv")
+bad_output_case(bad_output_apply_same_log ${same} "exec \"$0\" apply calib.json log.csv -o log.csv")
+# Regression: apply wrote its output over the calibration file it read.
+bad_output_case(bad_output_apply_same_calib ${same}
+  "\"$0\" apply calib.json log.csv -o calib.json; s=$?; cmp -s calib.json '${GOOD_CALIB}' || s=9; exit $s")
+bad_output_case(bad_output_apply_link ${same}
+  "ln -sf log.csv link.csv && exec \"$0\" apply calib.json log.csv -o link.csv")
+bad_output_case(bad_output_repeat_same ${same}
+  "cp calib.json c2.json && exec \"$0\" repeat calib.json c2.json --json c2.json")
+bad_output_case(bad_output_verify_same ${same}
+  "exec \"$0\" verify --imu log.csv --gnss '${GOOD_GNSS}' -o log.csv")
+mpcal_cli_test(bad_output_missing_directory EXIT 1 MATCH "no/such/dir"
+  ARGS apply ${GOOD_CALIB} ${GOOD_LOG} -o no/such/dir/out.csv)
+mpcal_cli_test(bad_output_is_directory EXIT 1 MATCH "is a directory"
+  ARGS simulate static --positions 2 --dwell 1 -o .)
+# Regression: a --truth that cannot be written left the log behind.
+mpcal_cli_test(bad_output_simulate_truth_unwritable EXIT 1 MATCH "is a directory"
+  ABSENT s.csv ARGS simulate static --positions 2 --dwell 1 -o s.csv --truth .)
+
+# simulate's option errors: bad numbers are usage (exit 2) with a message
+# that says what is wrong (regression: CLI11 spelled out DBL_MAX digit by
+# digit), or invalid combinations (exit 1).
+mpcal_cli_test(bad_simulate_negative_rate EXIT 2 MATCH "--rate: must be a positive number, got '-1'"
+  ABSENT s.csv ARGS simulate static --rate -1 -o s.csv)
+mpcal_cli_test(bad_simulate_infinite_rate EXIT 2 MATCH "--rate: must be a positive number, got 'inf'"
+  ABSENT s.csv ARGS simulate static --rate inf -o s.csv)
+mpcal_cli_test(bad_simulate_nan_rate EXIT 2 MATCH "--rate: must be a positive number, got 'nan'"
+  ABSENT s.csv ARGS simulate static --rate nan -o s.csv)
+mpcal_cli_test(bad_simulate_not_a_number EXIT 2 MATCH "--dwell"
+  ABSENT s.csv ARGS simulate static --dwell ten -o s.csv)
+mpcal_cli_test(bad_simulate_too_long EXIT 1 MATCH "the limit is"
+  ABSENT s.csv ARGS simulate static --positions 100000 --dwell 1000 -o s.csv)
+mpcal_cli_test(bad_calibrate_zero_range EXIT 2 MATCH "--range: must be a positive number"
+  ABSENT out.json ARGS calibrate ${GOOD_LOG} --range 0 -o out.json)

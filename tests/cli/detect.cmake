@@ -1,0 +1,41 @@
+# mpcal detect: the positions of a session and whether they are enough.
+set(_xsens ${MPCAL_SHARED_DATA}/xsens-multiposition/xsens_acc.mat)
+set(_ferraris ${MPCAL_SHARED_DATA}/imucal-ferraris/example_ferraris_session.csv)
+
+# Real sessions good enough for their model: exit 0, the table and the verdict.
+mpcal_cli_test(detect_xsens_counts EXIT 0
+  MATCH "^good enough to calibrate with --model shin-el-sheimy-9"
+  ARGS detect ${_xsens} --units counts)
+mpcal_cli_test(detect_xsens_positions EXIT 0 MATCH "^  38 static positions; 0 still"
+  ARGS detect ${_xsens} --units counts)
+mpcal_cli_test(detect_xsens_table EXIT 0
+  MATCH " 1 +0\\.81 +51\\.66 +50\\.85 +33102\\.2 +33330\\.5 +36433\\.8"
+  ARGS detect ${_xsens} --units counts)
+mpcal_cli_test(detect_ferraris_six_parameters EXIT 0
+  MATCH "verdict: good"
+  ARGS detect ${_ferraris} --rate 102.4 --model bias-scale-6)
+mpcal_cli_test(detect_json EXIT 0 MATCH "wrote positions\\.json"
+  ARGS detect ${_xsens} --units counts --json positions.json)
+
+# Not enough: exit 1 and one line saying what to record.
+mpcal_cli_test(detect_ferraris_nine_parameters EXIT 1
+  MATCH "mpcal: error: the 11 static positions are only 6 distinct orientations, too few to determine the 9 parameters.*--model bias-scale-6"
+  ARGS detect ${_ferraris} --rate 102.4)
+mpcal_cli_test(detect_too_few_positions EXIT 1
+  MATCH "mpcal: error: session has 4 static positions, the 9-parameter model needs at least 10: record 6 more positions, e\\.g\\. with the \\+x face"
+  ARGS detect ${MPCAL_TEST_DATA}/detect_four_positions.csv --units g)
+mpcal_cli_test(detect_never_still EXIT 1
+  MATCH "mpcal: error: .*no static position found in 40\\.0 s.*never stops moving.*--max-still"
+  ARGS detect ${MPCAL_TEST_DATA}/detect_always_moving.csv --units g)
+mpcal_cli_test(detect_min_static_too_long EXIT 1
+  MATCH "mpcal: error: .*longest still stretch lasts 4\\.[0-9]+ s, shorter than the minimum 30 s.*--min-static"
+  ARGS detect ${MPCAL_TEST_DATA}/detect_four_positions.csv --units g --min-static 30)
+
+# Bad input and usage.
+mpcal_cli_test(detect_missing_file EXIT 1 MATCH "mpcal: error: .*no_such_log\\.csv"
+  ABSENT out.json
+  ARGS detect no_such_log.csv --json out.json)
+mpcal_cli_test(detect_bad_threshold EXIT 2 MATCH "mpcal: error: .*--threshold"
+  ARGS detect ${MPCAL_TEST_DATA}/detect_four_positions.csv --threshold 0.5)
+mpcal_cli_test(detect_help EXIT 0 MATCH "mpcal detect xsens_acc.mat --units counts"
+  ARGS detect --help)

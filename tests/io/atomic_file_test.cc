@@ -1,0 +1,127 @@
+#include "mpcal/atomic_file.h"
+
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "mpcal/error.h"
+#include "test_util.h"
+
+namespace mpcal {
+namespace {
+
+using ::testing::HasSubstr;
+using mpcal::testing::ReadFile;
+using mpcal::testing::ScratchDir;
+
+std::size_t FilesIn(const ScratchDir& dir) {
+  std::size_t n = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    (void)entry;
+    ++n;
+  }
+  return n;
+}
+
+TEST(AtomicFile, WritesAndReplacesWholeFiles) {
+  ScratchDir dir;
+  const std::string path = dir.Path("out.txt");
+  WriteFileAtomically(path, "first\n");
+  EXPECT_EQ(ReadFile(path), "first\n");
+  WriteFileAtomically(path, "second\n");
+  EXPECT_EQ(ReadFile(path), "second\n");
+  EXPECT_EQ(FilesIn(dir), 1u);  // no temporary file left beside it
+}
+
+TEST(AtomicFile, StreamsLargeContent) {
+  ScratchDir dir;
+  const std::string path = dir.Path("big.txt");
+  std::string expected;
+  for (int i = 0; i < 300000; ++i) expected += std::to_string(i) + "\n";
+  WriteStreamAtomically(path, [&](std::ostream& out) {
+    for (int i = 0; i < 300000; ++i) out << i << '\n';
+  });
+  EXPECT_EQ(ReadFile(path), expected);
+}
+
+TEST(AtomicFile, GetsOrdinaryPermissions) {
+  ScratchDir dir;
+  const std::string path = dir.Path("perm.txt");
+  WriteFileAtomically(path, "x");
+  struct stat st{};
+  ASSERT_EQ(stat(path.c_str(), &st), 0);
+  const mode_t mask = umask(0);
+  umask(mask);
+  EXPECT_EQ(st.st_mode & 0777, 0666 & ~mask);
+}
+
+TEST(AtomicFile, FailureInTheMiddleLeavesNothingAndKeepsTheOldFile) {
+  ScratchDir dir;
+  const std::string path = dir.Path("out.txt");
+  EXPECT_THROW(WriteStreamAtomically(path,
+                                     [](std::ostream& out) {
+                                       out << "partial";
+                                       throw Error("input broke");
+                                     }),
+               Error);
+  EXPECT_FALSE(std::filesystem::exists(path));
+  EXPECT_EQ(FilesIn(dir), 0u);
+
+  WriteFileAtomically(path, "old\n");
+  EXPECT_THROW(WriteStreamAtomically(path,
+                                     [](std::ostream& out) {
+                                       out << "new";
+                                       throw std::runtime_error("bug");
+                                     }),
+               std::runtime_error);
+  EXPECT_EQ(ReadFile(path), "old\n");
+  EXPECT_EQ(FilesIn(dir), 1u);
+}
+
+TEST(AtomicFile, MissingDirectoryOrDirectoryTarget) {
+  ScratchDir dir;
+  try {
+    WriteFileAtomically(dir.Path("no/such/dir/out.txt"), "x");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("does not exist"));
+  }
+  try {
+    WriteFileAtomically(dir.path().string(), "x");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("is a directory"));
+  }
+}
+
+TEST(AtomicFile, UnwritableDirectory) {
+  if (geteuid() == 0) GTEST_SKIP() << "root writes anywhere";
+  ScratchDir dir;
+  std::filesystem::create_directory(dir.path() / "ro");
+  std::filesystem::permissions(dir.path() / "ro", std::filesystem::perms::owner_read |
+                                                      std::filesystem::perms::owner_exec);
+  EXPECT_THROW(WriteFileAtomically((dir.path() / "ro" / "out.txt").string(), "x"), Error);
+  std::filesystem::permissions(dir.path() / "ro", std::filesystem::perms::owner_all);
+}
+
+TEST(RefuseOverwritingInput, SamePathLinkAndDifferentFiles) {
+  ScratchDir dir;
+  const std::string input = dir.Write("in.csv", "t,ax,ay,az\n");
+  EXPECT_THROW(RefuseOverwritingInput(input, input), Error);
+  EXPECT_THROW(RefuseOverwritingInput(input, (dir.path() / "." / "in.csv").string()), Error);
+  std::filesystem::create_hard_link(input, dir.Path("hard.csv"));
+  EXPECT_THROW(RefuseOverwritingInput(input, dir.Path("hard.csv")), Error);
+  std::filesystem::create_symlink(input, dir.Path("soft.csv"));
+  EXPECT_THROW(RefuseOverwritingInput(dir.Path("soft.csv"), input), Error);
+  EXPECT_NO_THROW(RefuseOverwritingInput(input, dir.Path("out.csv")));
+  EXPECT_NO_THROW(RefuseOverwritingInput("-", "-"));
+  EXPECT_NO_THROW(RefuseOverwritingInput(input, "-"));
+}
+
+}  // namespace
+}  // namespace mpcal
