@@ -11,9 +11,9 @@
 #include <Eigen/Core>
 
 #include "mpcal/calibrate.h"
-#include "mpcal/cramer_rao.h"
 #include "mpcal/error.h"
 #include "mpcal/simulate.h"
+#include "mpcal/simulated_bound.h"
 
 namespace mpcal::bench {
 
@@ -54,30 +54,6 @@ inline SimulateStaticOptions DrawSession(const Envelope& e, std::mt19937_64& rng
   return o;
 }
 
-/// 1σ of the Cramér-Rao bound of a simulated session, with all its still
-/// samples (the detector trims settling, so an estimate can at best come
-/// within a few % of it). The initial rest is a static position too, and the
-/// estimator uses it: so does the bound, its direction being the truth
-/// applied to its mean.
-inline Eigen::Matrix<double, 9, 1> BoundSigma(const SimulatedSession& s,
-                                              double initial_rest_s) {
-  std::vector<BoundPosition> positions;
-  const double quantisation_var = std::pow(s.quantisation_step_mps2, 2) / 12.0;
-  const Eigen::Vector3d noise =
-      (s.noise_std_mps2.cwiseAbs2().array() + quantisation_var).sqrt().matrix();
-  const auto rest_samples = static_cast<std::size_t>(initial_rest_s * s.rate_hz);
-  if (rest_samples > 0) {
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < rest_samples; ++i) mean += s.recording.accel[i];
-    mean /= static_cast<double>(rest_samples);
-    positions.push_back({s.truth.Correct(mean).normalized(), noise, rest_samples});
-  }
-  for (std::size_t k = 0; k < s.directions.size(); ++k) {
-    positions.push_back({s.directions[k], noise, s.still_ranges[k].second - s.still_ranges[k].first});
-  }
-  return CramerRaoBound(s.truth.model, positions, s.truth.gravity_mps2).diagonal().cwiseSqrt();
-}
-
 /// One session through the pipeline: the error and the reported 1σ, both in
 /// units of the bound; nullopt when calibration failed (thrown or did not
 /// converge).
@@ -93,7 +69,7 @@ inline std::optional<Outcome> RunSession(const SimulateStaticOptions& options) {
   try {
     const CalibrateResult r = CalibrateRecording(s.recording, calibrate);
     if (!r.solve.converged()) return std::nullopt;
-    const Eigen::Matrix<double, 9, 1> bound = BoundSigma(s, options.initial_rest_s);
+    const Eigen::Matrix<double, 9, 1> bound = SimulatedBoundSigma(s, options.initial_rest_s);
     return Outcome{(ToVector(r.calibration.model) - ToVector(s.truth.model)).cwiseQuotient(bound),
                    ToVector(*r.calibration.std).cwiseQuotient(bound)};
   } catch (const Error&) {

@@ -71,9 +71,20 @@ std::string FormatFitSummary(const CalibrateResult& result) {
   if (d.dropped_short > 0) out += fmt::format(", {} too short dropped", d.dropped_short);
   if (d.merged > 0) out += fmt::format(", {} merged across a bump", d.merged);
   out += fmt::format("\nfit: {} after {} iterations; |a|-g RMS over the positions {:.4f} m/s2 "
-                     "before, {:.6f} m/s2 after; variance factor {:.3g}\n",
+                     "before, {:.6f} m/s2 after",
                      ToString(s.status), s.iterations, s.residual_rms_before_mps2,
-                     s.residual_rms_after_mps2, s.variance_factor);
+                     s.residual_rms_after_mps2);
+  if (!s.cross_validation_residual_mps2.empty()) {
+    out += fmt::format(" ({:.6f} m/s2 left out, cross-validated)", s.cross_validation_rms_mps2);
+  }
+  out += fmt::format("\nquality: variance factor {:.3g} (1 = residuals as the sensor noise explains)",
+                     s.variance_factor);
+  if (s.position_scatter_mps2 > 0.0) {
+    out += fmt::format("; positions scatter {:.2g} m/s2 beyond the sensor noise (hand tremor, "
+                       "non-white noise or model error), weighted in",
+                       s.position_scatter_mps2);
+  }
+  out += "\n";
   if (!s.converged()) out += fmt::format("solver: {}\n", s.message);
   return out;
 }

@@ -13,8 +13,8 @@
 #include "command.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/calibration_file.h"
-#include "mpcal/cramer_rao.h"
 #include "mpcal/simulate.h"
+#include "mpcal/simulated_bound.h"
 
 namespace mpcal::cli {
 namespace {
@@ -24,31 +24,6 @@ struct DemoFlags {
   std::uint64_t seed = 1;
   std::string output_dir = "mpcal-demo";
 };
-
-// The bound with all still samples of each position and of the initial
-// rest, which the estimator uses as one more position; the detector trims
-// the settling at each end, so the estimate can at best come within a few %.
-Eigen::Matrix<double, 9, 1> BoundSigma(const SimulatedSession& session, double rest_s) {
-  std::vector<BoundPosition> positions;
-  const double quantisation_var = std::pow(session.quantisation_step_mps2, 2) / 12.0;
-  const Eigen::Vector3d noise =
-      (session.noise_std_mps2.cwiseAbs2().array() + quantisation_var).sqrt().matrix();
-  const auto rest_samples = static_cast<std::size_t>(rest_s * session.rate_hz);
-  Eigen::Vector3d rest_mean = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < rest_samples; ++i) rest_mean += session.recording.accel[i];
-  if (rest_samples > 0) {
-    positions.push_back({session.truth.Correct(rest_mean / static_cast<double>(rest_samples))
-                             .normalized(),
-                         noise, rest_samples});
-  }
-  for (std::size_t k = 0; k < session.directions.size(); ++k) {
-    positions.push_back({session.directions[k], noise,
-                         session.still_ranges[k].second - session.still_ranges[k].first});
-  }
-  return CramerRaoBound(session.truth.model, positions, session.truth.gravity_mps2)
-      .diagonal()
-      .cwiseSqrt();
-}
 
 void Run(const DemoFlags& f) {
   SimulateStaticOptions sim;
@@ -61,7 +36,7 @@ void Run(const DemoFlags& f) {
              f.seed);
 
   const CalibrateResult result = CalibrateRecording(session.recording, CalibrateOptions{});
-  const Eigen::Matrix<double, 9, 1> bound = BoundSigma(session, sim.initial_rest_s);
+  const Eigen::Matrix<double, 9, 1> bound = SimulatedBoundSigma(session, sim.initial_rest_s);
   const Eigen::Matrix<double, 9, 1> truth = ToVector(session.truth.model);
   fmt::print("{}\n{}", FormatParameterTable(result.calibration,
                                             {{"truth", truth}, {"bound 1σ", bound}}),

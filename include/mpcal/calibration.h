@@ -52,6 +52,10 @@ struct FitSummary {
   /// A-posteriori variance of unit weight (χ²/dof); ≈1 when the residuals
   /// are what the sensor noise explains.
   std::optional<double> variance_factor;
+  /// Scatter of the positions beyond what the sensor noise explains (m/s²,
+  /// 1σ): hand tremor, non-white noise or model error. 0 when the noise
+  /// explains the residuals.
+  std::optional<double> position_scatter_mps2;
   /// Leave-one-position-out RMS of predicted residuals (m/s²).
   std::optional<double> cross_validation_rms_mps2;
 };

@@ -47,6 +47,11 @@ struct SolveOptions {
   double outlier_threshold = 5.0;
   /// Leave-one-position-out cross-validation (K extra small fits).
   bool cross_validate = true;
+  /// Offset of the readings before calibration (m/s²), for the "before"
+  /// residuals only: zero for m/s² and g; for raw counts the ADC's zero
+  /// found from the positions, so that "before" means nominal scale and
+  /// offset rather than an arbitrary 32768 counts.
+  Eigen::Vector3d nominal_offset_mps2 = Eigen::Vector3d::Zero();
 
   /// Empty string when valid, otherwise names the first bad field.
   std::string Validate() const;
@@ -66,7 +71,8 @@ struct SolveResult {
   /// parameters held fixed (angles of kBiasScale6) are zero.
   Eigen::Matrix<double, 9, 9> covariance = Eigen::Matrix<double, 9, 9>::Zero();
   ErrorModel std;  ///< square roots of the covariance diagonal
-  /// |a_k| − g per position (m/s²) with the raw readings (identity model) and
+  /// |a_k| − g per position (m/s²) with the raw readings (nominal scale and
+  /// offset only) and
   /// at the estimate, for every position given, used or not; the RMS is over
   /// the used ones.
   std::vector<double> residual_before_mps2;

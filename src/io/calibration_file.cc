@@ -233,6 +233,9 @@ std::string CalibrationToJson(const Calibration& c) {
                 {"converged", f.converged},
                 {"excluded_positions", f.excluded_positions}};
     if (f.variance_factor) fit["variance_factor"] = Num(*f.variance_factor, "fit.variance_factor");
+    if (f.position_scatter_mps2) {
+      fit["position_scatter_mps2"] = Num(*f.position_scatter_mps2, "fit.position_scatter_mps2");
+    }
     if (f.cross_validation_rms_mps2) {
       fit["cross_validation_rms_mps2"] =
           Num(*f.cross_validation_rms_mps2, "fit.cross_validation_rms_mps2");
@@ -362,6 +365,7 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
       fit.excluded_positions = static_cast<int>(r.Integer(f, "fit", "excluded_positions", 0));
     }
     fit.variance_factor = r.OptionalNumber(f, "fit", "variance_factor");
+    fit.position_scatter_mps2 = r.OptionalNumber(f, "fit", "position_scatter_mps2");
     fit.cross_validation_rms_mps2 = r.OptionalNumber(f, "fit", "cross_validation_rms_mps2");
     c.fit = fit;
   }

@@ -19,17 +19,24 @@ namespace {
 constexpr double kPlausibleRestRatioLow = 0.5;
 constexpr double kPlausibleRestRatioHigh = 1.6;
 
-double MedianMagnitude(const std::vector<PositionObservation>& positions) {
+// Median magnitude of the readings, on every 16th sample: a hand-held
+// session is mostly at rest, and during turns |a| stays near g as well.
+double MedianMagnitude(const Recording& recording) {
+  constexpr std::size_t kStride = 16;
   std::vector<double> m;
-  for (const auto& p : positions) m.push_back(p.mean_mps2.norm());
+  m.reserve(recording.size() / kStride + 1);
+  for (std::size_t i = 0; i < recording.size(); i += kStride) m.push_back(recording.accel[i].norm());
   std::nth_element(m.begin(), m.begin() + m.size() / 2, m.end());
   return m[m.size() / 2];
 }
 
-// Catches a log in one unit read as another, from the magnitude at rest.
-void CheckUnits(const std::vector<PositionObservation>& positions, AccelUnits units,
-                double gravity_mps2, const std::string& source) {
-  const double ratio = MedianMagnitude(positions) / gravity_mps2;
+// Catches a log in one unit read as another, from the magnitude at rest,
+// before detection: read in the wrong unit, the noise at rest looks ten
+// times too large or too small and detection would fail for the wrong reason.
+void CheckUnits(const Recording& recording, double gravity_mps2) {
+  const AccelUnits units = recording.units;
+  const std::string& source = recording.source;
+  const double ratio = MedianMagnitude(recording) * *FixedMps2PerUnit(units) / gravity_mps2;
   if (ratio >= kPlausibleRestRatioLow && ratio <= kPlausibleRestRatioHigh) return;
   const double as_read = ratio * gravity_mps2 / *FixedMps2PerUnit(units);
   std::string hint = "check --units and --columns";
@@ -42,7 +49,7 @@ void CheckUnits(const std::vector<PositionObservation>& positions, AccelUnits un
     hint = "the readings look like raw ADC counts: add --units counts";
   }
   throw Error(fmt::format(
-      "{}: the static positions read {:.4g} {} in magnitude, but gravity is {:.5g} m/s2 "
+      "{}: the readings have a median magnitude of {:.4g} {}, but gravity is {:.5g} m/s2 "
       "({:.4g} {}); {}",
       source, as_read, ToString(units), gravity_mps2,
       gravity_mps2 / *FixedMps2PerUnit(units), ToString(units), hint));
@@ -62,23 +69,32 @@ CalibrateResult CalibrateRecording(const Recording& recording,
     throw Error("calibration options: " + problem);
   }
   CalibrateResult result;
+  if (!recording.empty() && recording.units != AccelUnits::kCounts) {
+    CheckUnits(recording, options.solve.gravity_mps2);
+  }
   result.detection = DetectStatic(recording, options.detect);
   const auto& intervals = result.detection.intervals;
   if (intervals.empty()) throw Error(result.detection.message);
-  const int needed = ParameterCount(options.solve.model) + 1;
+  const int needed = ParameterCount(options.solve.model);
   if (static_cast<int>(intervals.size()) < needed) {
     CoverageOptions coverage;
     coverage.model = options.solve.model;
     coverage.units = recording.units;
-    throw Error(fmt::format("{}: {}; run 'mpcal detect {}' to see the positions found",
-                            recording.source,
-                            AssessCoverage(result.detection, coverage).summary,
-                            recording.source));
+    const bool six_would_do = options.solve.model == ModelKind::kShinElSheimy9 &&
+                              intervals.size() >= 6;
+    throw Error(fmt::format(
+        "{}: {}{}; run 'mpcal detect {}' to see the positions found", recording.source,
+        AssessCoverage(result.detection, coverage).summary,
+        six_would_do ? "; with each axis up and down once, --model bias-scale-6 calibrates "
+                       "bias and scale (the six-position protocol)"
+                     : "",
+        recording.source));
   }
 
   // Raw counts: the nominal scale is the radius of the sphere the position
   // means lie on, so that the model's scale-factor errors stay small numbers
   // and the six-position initialisation works as for any other unit.
+  Eigen::Vector3d nominal_offset_mps2 = Eigen::Vector3d::Zero();
   if (const auto fixed = FixedMps2PerUnit(recording.units)) {
     result.mps2_per_unit = *fixed;
   } else {
@@ -93,6 +109,7 @@ CalibrateResult CalibrateRecording(const Recording& recording,
           recording.source, intervals.size(), recording.source));
     }
     result.mps2_per_unit = options.solve.gravity_mps2 / sphere.radius;
+    nominal_offset_mps2 = sphere.centre * result.mps2_per_unit;
   }
 
   for (const auto& in : intervals) {
@@ -104,11 +121,10 @@ CalibrateResult CalibrateRecording(const Recording& recording,
     p.end_s = in.end_s;
     result.positions.push_back(p);
   }
-  if (recording.units != AccelUnits::kCounts) {
-    CheckUnits(result.positions, recording.units, options.solve.gravity_mps2, recording.source);
-  }
 
-  result.solve = Solve(result.positions, options.solve);
+  SolveOptions solve = options.solve;
+  solve.nominal_offset_mps2 = nominal_offset_mps2;
+  result.solve = Solve(result.positions, solve);
   result.warnings = result.detection.warnings;  // positions dropped for clipping
   result.warnings.insert(result.warnings.end(), result.solve.warnings.begin(),
                          result.solve.warnings.end());
@@ -127,6 +143,7 @@ CalibrateResult CalibrateRecording(const Recording& recording,
   fit.iterations = result.solve.iterations;
   fit.converged = result.solve.converged();
   fit.variance_factor = result.solve.variance_factor;
+  fit.position_scatter_mps2 = result.solve.position_scatter_mps2;
   fit.excluded_positions =
       static_cast<int>(std::count(result.solve.used.begin(), result.solve.used.end(), false));
   fit.positions -= fit.excluded_positions;

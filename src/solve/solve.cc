@@ -147,11 +147,17 @@ class Fit {
     const internal::Observability obs =
         internal::AnalyseObservability(Jacobian(), EstimatedNames(options_.model));
     if (!obs.undetermined.empty()) {
+      const bool only_angles =
+          std::all_of(obs.undetermined.begin(), obs.undetermined.end(),
+                      [](const std::string& name) { return name.starts_with("theta"); });
       throw Error(fmt::format(
           "the {} static positions do not determine {}: their orientations do not span "
           "the sphere; record more positions, with each axis pointing up and down and "
-          "at the cube's edges and corners (run 'mpcal detect' to see the coverage)",
-          input_.positions.size(), fmt::join(obs.undetermined, ", ")));
+          "at the cube's edges and corners (run 'mpcal detect' to see the coverage){}",
+          input_.positions.size(), fmt::join(obs.undetermined, ", "),
+          only_angles ? "; or calibrate bias and scale only with --model bias-scale-6 "
+                        "(the six-position protocol)"
+                      : ""));
     }
     summary_ = RunSolver(options_, *problem_);
     iterations_ = static_cast<int>(summary_.iterations.size()) - 1;
@@ -360,11 +366,11 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   }
   const int p = ParameterCount(options.model);
   const std::size_t count = positions.size();
-  if (static_cast<int>(count) < p + 1) {
+  if (static_cast<int>(count) < p) {
     throw Error(fmt::format(
         "{} static positions are too few for the {} model ({} parameters): it needs at "
         "least {}, and more than 18 spanning the sphere for reliable results{}",
-        count, ToString(options.model), p, p + 1,
+        count, ToString(options.model), p, p,
         options.model == ModelKind::kShinElSheimy9 && count >= 6
             ? "; with the six axis-up/axis-down positions use --model bias-scale-6"
             : ""));
@@ -379,7 +385,9 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   SolveResult result;
   result.used.assign(count, true);
   result.initial = InitialiseSixPosition(positions, options.gravity_mps2);
-  result.residual_before_mps2 = MagnitudeResiduals(ErrorModel{}, positions, options.gravity_mps2);
+  ErrorModel nominal;
+  nominal.bias_mps2 = options.nominal_offset_mps2;
+  result.residual_before_mps2 = MagnitudeResiduals(nominal, positions, options.gravity_mps2);
   const std::vector<Eigen::Vector3d> noise = internal::UsableNoise(positions);
 
   auto fit = std::make_unique<Fit>(Select(positions, noise, result.used), result.initial, options);
@@ -455,13 +463,22 @@ SolveResult Solve(std::span<const PositionObservation> positions,
         name));
   }
 
+  const int dof = static_cast<int>(std::count(result.used.begin(), result.used.end(), true)) - p;
+  if (dof == 0) {
+    result.warnings.push_back(fmt::format(
+        "{} positions for {} parameters leave no redundancy: the residuals are zero by "
+        "construction and cannot reveal a bad position; the 1σ come from the sensor noise "
+        "alone. Record a few more positions (edges, corners) to check the fit",
+        count, p));
+  }
+
   // Cross-validation: each used position predicted by the fit without it;
   // an excluded one is already predicted by the final fit, which lacks it.
   const FitInput in = Select(positions, noise, result.used);
   const std::vector<double> z = Standardised(*fit, in.positions.size());
   result.standardised_residual.assign(count, 0.0);
   for (std::size_t j = 0; j < in.index.size(); ++j) result.standardised_residual[in.index[j]] = z[j];
-  if (options.cross_validate) {
+  if (options.cross_validate && dof > 0) {
     result.cross_validation_residual_mps2 = result.residual_after_mps2;
     for (std::size_t j = 0; j < in.index.size(); ++j) {
       result.cross_validation_residual_mps2[in.index[j]] = fit->PredictedWithout(j);
@@ -479,7 +496,8 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   for (std::size_t j = 0; j < in.index.size(); ++j) {
     chi2 += std::pow(fit->Residual(j) / fit->sigmas()[j], 2);
   }
-  result.variance_factor = chi2 / (static_cast<double>(in.index.size()) - p);
+  // With no redundancy the residuals say nothing: keep the a-priori level.
+  result.variance_factor = dof > 0 ? chi2 / dof : 1.0;
   result.covariance.topLeftCorner(p, p) =
       std::max(1.0, result.variance_factor) * fit->UnscaledCovariance();
   result.std = FromVector(result.covariance.diagonal().cwiseMax(0.0).cwiseSqrt());

@@ -111,7 +111,7 @@ TEST(Solve, SixParameterModelHoldsTheAnglesAtZero) {
 TEST(Solve, RefusesTooFewPositionsAndSuggestsTheSixParameterModel) {
   std::mt19937_64 rng(5);
   auto directions = CubeDirections();
-  directions.resize(8);
+  directions.resize(8);  // 9 parameters
   const auto session = MakeSession(ConsumerGrade(), directions, kNoise, kSamples, rng);
   try {
     Solve(session.positions, SolveOptions{});
