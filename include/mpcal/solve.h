@@ -79,8 +79,10 @@ struct SolveResult {
   std::vector<double> residual_after_mps2;
   double residual_rms_before_mps2 = 0.0;
   double residual_rms_after_mps2 = 0.0;
-  /// Residual of each position predicted by the fit without it (m/s²); empty
-  /// when cross-validation is off.
+  /// Residual of each position predicted by the fit without it (m/s²); NaN
+  /// for a position without which the parameters are undetermined (it cannot
+  /// be predicted); empty when cross-validation is off. The RMS is over the
+  /// predicted used positions.
   std::vector<double> cross_validation_residual_mps2;
   double cross_validation_rms_mps2 = 0.0;
   /// Whether each position was used; false for excluded outliers.

@@ -161,7 +161,8 @@ CalibrateResult CalibrateRecording(const Recording& recording,
     s.residual_before_mps2 = result.solve.residual_before_mps2[k];
     s.residual_after_mps2 = result.solve.residual_after_mps2[k];
     s.used = result.solve.used[k];
-    if (!result.solve.cross_validation_residual_mps2.empty()) {
+    if (!result.solve.cross_validation_residual_mps2.empty() &&
+        std::isfinite(result.solve.cross_validation_residual_mps2[k])) {
       s.cross_validation_residual_mps2 = result.solve.cross_validation_residual_mps2[k];
     }
     c.positions.push_back(s);

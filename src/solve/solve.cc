@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include <ceres/ceres.h>
@@ -478,12 +479,23 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   const std::vector<double> z = Standardised(*fit, in.positions.size());
   result.standardised_residual.assign(count, 0.0);
   for (std::size_t j = 0; j < in.index.size(); ++j) result.standardised_residual[in.index[j]] = z[j];
+  // A position that alone determines some parameter (the only one with +x
+  // up, say) cannot be predicted without it: NaN, not a made-up number.
   if (options.cross_validate && dof > 0) {
     result.cross_validation_residual_mps2 = result.residual_after_mps2;
+    const Eigen::MatrixXd jacobian = fit->Jacobian();
+    std::vector<bool> predicted = result.used;
     for (std::size_t j = 0; j < in.index.size(); ++j) {
-      result.cross_validation_residual_mps2[in.index[j]] = fit->PredictedWithout(j);
+      Eigen::MatrixXd without(jacobian.rows() - 1, jacobian.cols());
+      const auto row = static_cast<Eigen::Index>(j);
+      without << jacobian.topRows(row), jacobian.bottomRows(jacobian.rows() - row - 1);
+      const bool determined =
+          internal::AnalyseObservability(without, EstimatedNames(options.model)).undetermined.empty();
+      result.cross_validation_residual_mps2[in.index[j]] =
+          determined ? fit->PredictedWithout(j) : std::numeric_limits<double>::quiet_NaN();
+      predicted[in.index[j]] = determined;
     }
-    result.cross_validation_rms_mps2 = Rms(result.cross_validation_residual_mps2, result.used);
+    result.cross_validation_rms_mps2 = Rms(result.cross_validation_residual_mps2, predicted);
   }
 
   // Covariance: (JᵀJ)⁻¹ of the whitened problem, scaled by the a-posteriori
