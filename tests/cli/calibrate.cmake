@@ -1,0 +1,33 @@
+# mpcal calibrate and mpcal demo: the main job, on the real recordings, and
+# its refusals (one line, exit 1 or 2, no calibration file left behind).
+set(_xsens ${MPCAL_SHARED_DATA}/xsens-multiposition/xsens_acc.mat)
+set(_ferraris ${MPCAL_SHARED_DATA}/imucal-ferraris/example_ferraris_session.csv)
+
+mpcal_cli_test(calibrate_help EXIT 0 MATCH "mpcal calibrate session.csv -o calib.json"
+  ARGS calibrate --help)
+mpcal_cli_test(calibrate_xsens_counts EXIT 0
+  MATCH "^static positions: 38 used"
+  ARGS calibrate ${_xsens} --units counts --gravity 9.81744 -o calib.json)
+mpcal_cli_test(calibrate_xsens_read_as_mps2 EXIT 1
+  MATCH "look like raw ADC counts: add --units counts" ABSENT calib.json
+  ARGS calibrate ${_xsens} --gravity 9.81744 -o calib.json)
+mpcal_cli_test(calibrate_ferraris_six_parameters EXIT 0
+  MATCH "^fit: converged after"
+  ARGS calibrate ${_ferraris} --rate 102.4 --model bias-scale-6 -o calib.json)
+mpcal_cli_test(calibrate_ferraris_nine_parameters_refused EXIT 1
+  MATCH "do not determine theta.*--model bias-scale-6" ABSENT calib.json
+  ARGS calibrate ${_ferraris} --rate 102.4 -o calib.json)
+mpcal_cli_test(calibrate_missing_file EXIT 1 MATCH "no_such.csv" ABSENT calib.json
+  ARGS calibrate no_such.csv -o calib.json)
+mpcal_cli_test(calibrate_output_is_input EXIT 1 MATCH "xsens_acc.mat"
+  ARGS calibrate ${_xsens} --units counts -o ${_xsens})
+mpcal_cli_test(calibrate_unknown_model EXIT 2 MATCH "--model" ABSENT calib.json
+  ARGS calibrate ${_xsens} --model twelve -o calib.json)
+mpcal_cli_test(calibrate_gravity_and_latitude EXIT 2 MATCH "excludes" ABSENT calib.json
+  ARGS calibrate ${_xsens} --gravity 9.81 --latitude 45 -o calib.json)
+mpcal_cli_test(calibrate_latitude_out_of_range EXIT 2 MATCH "--latitude" ABSENT calib.json
+  ARGS calibrate ${_xsens} --latitude 95 -o calib.json)
+
+mpcal_cli_test(demo EXIT 0
+  MATCH "^RMS of \\(estimate - truth\\) / Cramér-Rao bound over the 9 parameters: [0-9.]+"
+  ARGS demo --output-dir out)
