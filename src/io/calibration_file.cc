@@ -20,7 +20,9 @@
 namespace mpcal {
 namespace {
 
-using nlohmann::json;
+// Ordered, so that the file reads top-down as the README documents it:
+// format first, then model, gravity, units, parameters, fit, positions.
+using json = nlohmann::ordered_json;
 
 constexpr std::string_view kFormatPrefix = "mpcal.accelerometer/";
 constexpr int kMajorVersion = 1;
