@@ -12,6 +12,7 @@
 
 #include "mpcal/error.h"
 #include "mpcal/units.h"
+#include "random.h"
 
 namespace mpcal {
 namespace {
@@ -28,59 +29,8 @@ constexpr std::uint64_t kNoiseStream = 0x6e6f697365616363ull;
 constexpr std::uint64_t kGyroStream = 0x6e6f69736567796full;
 constexpr std::uint64_t kTrialBiasStream = 0x747269616c626961ull;
 
-// SplitMix64 (Steele, Lea & Flood 2014): a good mixer to derive seeds.
-std::uint64_t SplitMix64(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
-// std::normal_distribution differs between standard libraries; deviates made
-// by hand from the (standardised) mt19937_64 output keep a seed's session the
-// same everywhere.
-class Random {
- public:
-  explicit Random(std::uint64_t seed) : engine_(seed) {}
-
-  /// Uniform in [0, 1).
-  double Uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
-  double Uniform(double lo, double hi) { return lo + (hi - lo) * Uniform(); }
-
-  /// Standard normal (Box-Muller, both deviates used).
-  double Normal() {
-    if (has_spare_) {
-      has_spare_ = false;
-      return spare_;
-    }
-    double u1 = Uniform();
-    while (u1 <= 0.0) u1 = Uniform();
-    const double u2 = Uniform();
-    const double r = std::sqrt(-2.0 * std::log(u1));
-    spare_ = r * std::sin(2.0 * kPi * u2);
-    has_spare_ = true;
-    return r * std::cos(2.0 * kPi * u2);
-  }
-  Eigen::Vector3d Normal3() {
-    const double x = Normal();
-    const double y = Normal();
-    const double z = Normal();
-    return {x, y, z};
-  }
-  /// Uniform on the unit sphere.
-  Eigen::Vector3d UnitVector() {
-    for (;;) {
-      const Eigen::Vector3d v = Normal3();
-      const double n = v.norm();
-      if (n > 1e-6) return v / n;
-    }
-  }
-
- private:
-  std::mt19937_64 engine_;
-  bool has_spare_ = false;
-  double spare_ = 0.0;
-};
+using internal::SplitMix64;
+using Random = internal::PortableRandom;
 
 // Rotates `u` by an angle uniform in [0, max_rad] about a random axis
 // perpendicular to it: a hand never holds a face exactly down.

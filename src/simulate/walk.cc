@@ -10,44 +10,14 @@
 
 #include "mpcal/error.h"
 #include "mpcal/simulate_walk.h"
+#include "random.h"
 
 namespace mpcal {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Deviates made by hand from mt19937_64 so that a seed gives the same walk
-// with any standard library (the distributions of <random> are not portable).
-class Rng {
- public:
-  explicit Rng(std::uint64_t seed) : engine_(seed) {}
-  double Uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
-  double Uniform(double a, double b) { return a + (b - a) * Uniform(); }
-  double Normal() {
-    if (has_spare_) {
-      has_spare_ = false;
-      return spare_;
-    }
-    double u1 = Uniform();
-    while (u1 <= 0.0) u1 = Uniform();
-    const double u2 = Uniform();
-    const double r = std::sqrt(-2.0 * std::log(u1));
-    spare_ = r * std::sin(2.0 * kPi * u2);
-    has_spare_ = true;
-    return r * std::cos(2.0 * kPi * u2);
-  }
-  Eigen::Vector3d Normal3() {
-    const double x = Normal();
-    const double y = Normal();
-    const double z = Normal();
-    return {x, y, z};
-  }
-
- private:
-  std::mt19937_64 engine_;
-  bool has_spare_ = false;
-  double spare_ = 0.0;
-};
+using Rng = internal::PortableRandom;
 
 // The walker's state at one instant, in east-north-up.
 struct State {
