@@ -4,7 +4,9 @@
 #   calibrate : floor = read the file + parse every number with fast_float
 #   apply     : floor = the same + write every number back with std::to_chars
 # plus peak memory (RSS) beside the file's size, and calibrate on the real
-# 51 k-row Xsens recording of imu_tk (target: under 0.1 s).
+# 51 k-row Xsens recording of imu_tk (target: under 0.1 s). Also the ratio
+# of CPU time (user + sys): mpcal reads with two threads, so on an idle
+# machine its time ratio is below its CPU ratio; on a loaded one they meet.
 #
 #   bench/speed_bench.sh BUILD_DIR [REPETITIONS]
 #
@@ -34,15 +36,15 @@ echo "generating the session (mpcal simulate static --rate 1000 --dwell 60 --res
 rows=$(($(grep -c '' "$log") - 1))
 bytes=$(stat -c %s "$log")
 
-# run NAME CMD...: one timed run; appends "seconds peak_kB" to $work/NAME.
+# run NAME CMD...: one timed run; appends "µs peak_kB cpu_ms" to $work/NAME.
 run() {
   local name=$1; shift
-  local t0 t1 peak
+  local t0 t1 peak cpu=0
   t0=$(date +%s%N)
   if [ -x /usr/bin/time ]; then
-    /usr/bin/time -f %M -o "$work/rss" "$@" >/dev/null 2>"$work/stderr" ||
+    /usr/bin/time -f '%M %U %S' -o "$work/rss" "$@" >/dev/null 2>"$work/stderr" ||
       { cat "$work/stderr" >&2; exit 1; }
-    peak=$(tail -n1 "$work/rss")
+    read -r peak cpu < <(tail -n1 "$work/rss" | awk '{printf "%d %d\n", $1, ($2 + $3) * 1000}')
   else
     # Without GNU time: the peak (VmHWM) of the child, read by python.
     peak=$(python3 - "$@" <<'EOF'
@@ -53,10 +55,10 @@ EOF
 )
   fi
   t1=$(date +%s%N)
-  echo "$(( (t1 - t0) / 1000 )) $peak" >>"$work/$name"
+  echo "$(( (t1 - t0) / 1000 )) $peak $cpu" >>"$work/$name"
 }
 
-# median NAME COLUMN: the median of one column (1 = µs, 2 = peak kB).
+# median NAME COLUMN: the median of one column (1 = µs, 2 = peak kB, 3 = CPU ms).
 median() {
   sort -n -k"$2","$2" "$work/$1" | awk -v c="$2" '{v[NR]=$c} END {print v[int((NR+1)/2)]}'
 }
@@ -81,18 +83,22 @@ ratio() { awk -v a="$1" -v b="$2" 'BEGIN {printf "%.2f", a / b}'; }
 
 printf 'session: %d rows, %.1f MB (%s); median of %d runs\n' "$rows" \
   "$(awk -v b="$bytes" 'BEGIN {print b / 1e6}')" "$(basename "$log")" "$reps"
-printf '%-34s %9s %8s %14s\n' "" "time (s)" "ratio" "peak RSS (MB)"
+cpu_ratio() { [ "$2" -gt 0 ] && ratio "$1" "$2" || echo "-"; }
+printf '%-34s %9s %8s %10s %14s\n' "" "time (s)" "ratio" "CPU ratio" "peak RSS (MB)"
 f=$(median floor 1); fw=$(median floor_write 1)
 c=$(median calibrate 1); a=$(median apply 1)
-printf '%-34s %9s %8s %14s\n' "floor: read + fast_float" "$(fmt_s "$f")" "1.00" \
+fc=$(median floor 3); fwc=$(median floor_write 3)
+printf '%-34s %9s %8s %10s %14s\n' "floor: read + fast_float" "$(fmt_s "$f")" "1.00" "1.00" \
   "$(fmt_mb "$(median floor 2)")"
-printf '%-34s %9s %8s %14s   target <= 1.2\n' "mpcal calibrate" "$(fmt_s "$c")" \
-  "$(ratio "$c" "$f")" "$(fmt_mb "$(median calibrate 2)")"
-printf '%-34s %9s %8s %14s\n' "floor + write back (to_chars)" "$(fmt_s "$fw")" "1.00" \
-  "$(fmt_mb "$(median floor_write 2)")"
-printf '%-34s %9s %8s %14s   target <= 2\n' "mpcal apply" "$(fmt_s "$a")" "$(ratio "$a" "$fw")" \
-  "$(fmt_mb "$(median apply 2)")"
+printf '%-34s %9s %8s %10s %14s   target <= 1.2\n' "mpcal calibrate" "$(fmt_s "$c")" \
+  "$(ratio "$c" "$f")" "$(cpu_ratio "$(median calibrate 3)" "$fc")" \
+  "$(fmt_mb "$(median calibrate 2)")"
+printf '%-34s %9s %8s %10s %14s\n' "floor + write back (to_chars)" "$(fmt_s "$fw")" "1.00" \
+  "1.00" "$(fmt_mb "$(median floor_write 2)")"
+printf '%-34s %9s %8s %10s %14s   target <= 2\n' "mpcal apply" "$(fmt_s "$a")" \
+  "$(ratio "$a" "$fw")" "$(cpu_ratio "$(median apply 3)" "$fwc")" "$(fmt_mb "$(median apply 2)")"
 if [ -f "$work/xsens" ]; then
-  printf '%-34s %9s %8s %14s   target < 0.1 s\n' "mpcal calibrate xsens_acc.mat (51k)" \
-    "$(fmt_s "$(median xsens 1)")" "" "$(fmt_mb "$(median xsens 2)")"
+  printf '%-34s %9s %8s %10s %14s   target < 0.1 s\n' "mpcal calibrate xsens_acc.mat (51k)" \
+    "$(fmt_s "$(median xsens 1)")" "" "" "$(fmt_mb "$(median xsens 2)")"
 fi
+echo "load average: $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores"

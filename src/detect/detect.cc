@@ -28,6 +28,103 @@ double Quantile(std::vector<double> values, double q) {
   return values[k];
 }
 
+// Quantile (as Quantile: nearest rank, exactly) of `count` values that
+// `for_each_value(f)` visits again, calling f(value) for each, from a
+// strided sample of them (every `stride`th; all when `stride` is 1): the
+// sample brackets the rank, and a visit keeps only the values inside the
+// bracket, so that millions of values are neither copied nor selected among.
+// Visits again, keeping all, when the bracket misses (or a value is NaN).
+template <typename ForEachValue>
+double QuantileOf(std::vector<double> sample,
+                  std::size_t stride,
+                  std::size_t count,
+                  double q,
+                  ForEachValue&& for_each_value) {
+  auto keep_all = [&] {
+    std::vector<double> all;
+    all.reserve(count);
+    for_each_value([&](double v) { all.push_back(v); });
+    return Quantile(std::move(all), q);
+  };
+  if (stride <= 1) return Quantile(std::move(sample), q);
+  if (sample.empty() || count == 0) return keep_all();
+  const auto rank =
+      static_cast<std::size_t>(std::clamp(q * static_cast<double>(count - 1),
+                                          0.0,
+                                          static_cast<double>(count - 1)));
+  // The sample's rank of q, +- 5 standard deviations of a sampled rank.
+  const double m = static_cast<double>(sample.size());
+  const double centre = q * (m - 1.0);
+  const double margin = 5.0 * std::sqrt(m * std::clamp(q * (1.0 - q), 1e-6, 0.25)) + 16.0;
+  auto sample_at = [&](double r) {
+    const auto k = static_cast<std::ptrdiff_t>(r);
+    std::nth_element(sample.begin(), sample.begin() + k, sample.end());
+    return sample[static_cast<std::size_t>(k)];
+  };
+  const double lo = centre - margin < 0.0 ? -std::numeric_limits<double>::infinity()
+                                          : sample_at(centre - margin);
+  const double hi = centre + margin > m - 1.0 ? std::numeric_limits<double>::infinity()
+                                              : sample_at(centre + margin);
+  std::size_t below = 0;
+  bool nan = false;
+  std::vector<double> inside;
+  inside.reserve(4 * static_cast<std::size_t>(margin) * stride);
+  for_each_value([&](double v) {
+    if (v < lo) {
+      ++below;
+    } else if (v <= hi) {
+      inside.push_back(v);
+    } else {
+      nan |= std::isnan(v);
+    }
+  });
+  if (nan || rank < below || rank >= below + inside.size()) return keep_all();
+  const auto k = static_cast<std::ptrdiff_t>(rank - below);
+  std::nth_element(inside.begin(), inside.begin() + k, inside.end());
+  return inside[static_cast<std::size_t>(k)];
+}
+
+// The motion statistic of the window of 2 half + 1 samples centred on each
+// sample c in [half, n - 1 - half], in order: visit(c, statistic). By
+// sliding sums over readings centred on the first one (counts near 32768
+// would otherwise lose their noise to cancellation). The sums are redone
+// from scratch every `resync` steps so that rounding cannot build up over
+// millions of samples.
+template <typename Visit>
+void ForEachWindow(const std::vector<Eigen::Vector3d>& a, std::size_t half, Visit&& visit) {
+  const std::size_t n = a.size();
+  const std::size_t w = 2 * half + 1;
+  const Eigen::Vector3d ref = a[0];
+  const std::size_t first = half;
+  const std::size_t last = n - 1 - half;  // inclusive
+  const std::size_t resync = std::max<std::size_t>(4096, 8 * w);
+  Eigen::Vector3d s1 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d s2 = Eigen::Vector3d::Zero();
+  const double wd = static_cast<double>(w);
+  std::size_t until_resync = 0;  // (c - first) % resync, without a division
+  for (std::size_t c = first; c <= last; ++c) {
+    const std::size_t lo = c - half;
+    const std::size_t hi = c + half;  // inclusive
+    if (until_resync-- == 0) {
+      until_resync = resync - 1;
+      s1.setZero();
+      s2.setZero();
+      for (std::size_t j = lo; j <= hi; ++j) {
+        const Eigen::Vector3d d = a[j] - ref;
+        s1 += d;
+        s2 += d.cwiseAbs2();
+      }
+    } else {
+      const Eigen::Vector3d add = a[hi] - ref;
+      const Eigen::Vector3d sub = a[lo - 1] - ref;
+      s1 += add - sub;
+      s2 += add.cwiseAbs2() - sub.cwiseAbs2();
+    }
+    const Eigen::Vector3d var = ((s2 - s1.cwiseAbs2() / wd) / (wd - 1.0)).cwiseMax(0.0);
+    visit(c, std::sqrt(var.sum()));
+  }
+}
+
 // Median sample period from (at most ~100k) consecutive differences: the
 // window is set in samples, and a few gaps must not move it.
 double MedianPeriod(const std::vector<double>& t) {
@@ -39,19 +136,74 @@ double MedianPeriod(const std::vector<double>& t) {
   return Quantile(std::move(dt), 0.5);
 }
 
-// The reading step of a quantised log (ADC counts, or values printed with
-// few decimals): the smallest non-zero change between samples. 0 when the
-// signal never changes.
-double ResolutionStep(const std::vector<Eigen::Vector3d>& a) {
+// What DetectStatic needs from every sample, found in one pass over them
+// (a recording has millions).
+struct SampleScan {
+  // The reading step of a quantised log (ADC counts, or values printed with
+  // few decimals): the smallest non-zero change between samples (checked at
+  // ~200k places spread over the log). 0 when the signal never changes.
+  double resolution_step = 0.0;
+  // The extremes of each axis.
+  Eigen::Vector3d highest = Eigen::Vector3d::Zero();
+  Eigen::Vector3d lowest = Eigen::Vector3d::Zero();
+};
+
+// Throws unless every sample is finite and time strictly increases, and
+// scans the samples on the way.
+SampleScan CheckAndScan(const Recording& recording, const std::string& src) {
+  const auto& t = recording.time_s;
+  const auto& a = recording.accel;
+  const std::size_t n = t.size();
+  // The message for the first bad sample in [b, e).
+  auto fail_in = [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      if (!std::isfinite(t[i]) || !a[i].allFinite()) {
+        throw Error(fmt::format("{}: sample {} (t = {} s) is not finite", src, i, t[i]));
+      }
+      if (i > 0 && !(t[i] > t[i - 1])) {
+        throw Error(fmt::format(
+            "{}: time does not increase at sample {} ({} s after {} s); the static "
+            "detector needs a strictly increasing time column",
+            src,
+            i,
+            t[i],
+            t[i - 1]));
+      }
+    }
+  };
+  constexpr double kMax = std::numeric_limits<double>::max();
+  constexpr std::size_t kBlock = 4096;  // checked without a branch per sample
+  SampleScan scan;
+  scan.highest = a[0];
+  scan.lowest = a[0];
   double step = std::numeric_limits<double>::infinity();
-  const std::size_t stride = std::max<std::size_t>(1, a.size() / 200000);
-  for (std::size_t i = stride; i < a.size(); i += stride) {
-    for (int k = 0; k < 3; ++k) {
-      const double d = std::abs(a[i][k] - a[i - 1][k]);
-      if (d > 0.0 && d < step) step = d;
+  const std::size_t stride = std::max<std::size_t>(1, n / 200000);
+  std::size_t next_step = stride;
+  for (std::size_t b = 0; b < n; b += kBlock) {
+    const std::size_t e = std::min(n, b + kBlock);
+    bool bad = false;
+    for (std::size_t i = b; i < e; ++i) {
+      // (|x| <= max is false for NaN and infinities.)
+      bad |= !(std::abs(t[i]) <= kMax) | !(std::abs(a[i][0]) <= kMax) |
+             !(std::abs(a[i][1]) <= kMax) | !(std::abs(a[i][2]) <= kMax);
+    }
+    for (std::size_t i = std::max<std::size_t>(b, 1); i < e; ++i) bad |= !(t[i] > t[i - 1]);
+    if (bad) fail_in(b, e);
+    for (std::size_t i = b; i < e; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        scan.highest[k] = std::max(scan.highest[k], a[i][k]);
+        scan.lowest[k] = std::min(scan.lowest[k], a[i][k]);
+      }
+    }
+    for (; next_step < e; next_step += stride) {
+      for (int k = 0; k < 3; ++k) {
+        const double d = std::abs(a[next_step][k] - a[next_step - 1][k]);
+        if (d > 0.0 && d < step) step = d;
+      }
     }
   }
-  return std::isfinite(step) ? step : 0.0;
+  scan.resolution_step = std::isfinite(step) ? step : 0.0;
+  return scan;
 }
 
 struct Piece {
@@ -104,10 +256,12 @@ SphereFit GravityInUnits(const Recording& r,
 
 // Marks the samples at the sensor's range limit (see
 // DetectOptions::range_mps2); `sphere` is one g and the zero in the
-// recording's units. Returns the number marked.
+// recording's units, `scan` has the readings' extremes. Returns the number
+// marked.
 std::size_t MarkClipped(const std::vector<Eigen::Vector3d>& a,
                         double range_mps2,
                         const SphereFit& sphere,
+                        const SampleScan& scan,
                         std::vector<std::uint8_t>* clipped,
                         std::string* what) {
   const std::size_t n = a.size();
@@ -126,12 +280,8 @@ std::size_t MarkClipped(const std::vector<Eigen::Vector3d>& a,
       hi_limit = c + limit;
       lo_limit = c - limit;
     } else {
-      double hi = a[0][k];
-      double lo = a[0][k];
-      for (const auto& v : a) {
-        hi = std::max(hi, v[k]);
-        lo = std::min(lo, v[k]);
-      }
+      const double hi = scan.highest[k];
+      const double lo = scan.lowest[k];
       // A level counts when the sensor sticks there: 3 identical samples.
       auto sticks_at = [&](double level) {
         std::size_t run = 0;
@@ -146,13 +296,19 @@ std::size_t MarkClipped(const std::vector<Eigen::Vector3d>& a,
       if (c - lo >= far && sticks_at(lo)) lo_limit = lo;
     }
     std::size_t count = 0;
-    for (std::size_t i = 0; i < n; ++i) {
+    // (The readings are finite: with no limit on this axis, none is at one.)
+    const bool limited = std::isfinite(hi_limit) || std::isfinite(lo_limit);
+    for (std::size_t i = 0; limited && i < n; ++i) {
       if (a[i][k] >= hi_limit || a[i][k] <= lo_limit) {
         (*clipped)[i] = 1;
         ++count;
       }
     }
-    if (count > 0) {
+    if (count > 0 && range_mps2 > 0.0) {
+      limits.push_back(c == 0.0 ? fmt::format("|{}| >= {:.6g}", kAxes[k], hi_limit)
+                                : fmt::format("|{} - {:.6g}| >= {:.6g}", kAxes[k], c,
+                                              hi_limit - c));
+    } else if (count > 0) {
       std::string side;
       if (std::isfinite(hi_limit)) side = fmt::format("{} >= {:.6g}", kAxes[k], hi_limit);
       if (std::isfinite(lo_limit)) {
@@ -208,20 +364,7 @@ DetectResult DetectStatic(const Recording& recording, const DetectOptions& optio
   }
   const auto& t = recording.time_s;
   const auto& a = recording.accel;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!std::isfinite(t[i]) || !a[i].allFinite()) {
-      throw Error(fmt::format("{}: sample {} (t = {} s) is not finite", src, i, t[i]));
-    }
-    if (i > 0 && !(t[i] > t[i - 1])) {
-      throw Error(fmt::format(
-          "{}: time does not increase at sample {} ({} s after {} s); the static "
-          "detector needs a strictly increasing time column",
-          src,
-          i,
-          t[i],
-          t[i - 1]));
-    }
-  }
+  const SampleScan scan = CheckAndScan(recording, src);
 
   DetectResult result;
   const double period = n > 1 ? MedianPeriod(t) : 0.0;
@@ -245,47 +388,31 @@ DetectResult DetectStatic(const Recording& recording, const DetectOptions& optio
         w));
   }
 
-  // Motion statistic at every window centre, by
-  // sliding sums over readings centred on the first one (counts near 32768
-  // would otherwise lose their noise to cancellation). The sums are redone
-  // from scratch every `kResync` steps so that rounding cannot build up over
-  // millions of samples.
-  const Eigen::Vector3d ref = a[0];
+  // Motion statistic at every window centre (ForEachWindow); infinite
+  // where no window fits.
   const std::size_t first = half;
   const std::size_t last = n - 1 - half;  // inclusive
-  std::vector<double> stat(n, std::numeric_limits<double>::infinity());
-  const std::size_t resync = std::max<std::size_t>(4096, 8 * w);
-  Eigen::Vector3d s1 = Eigen::Vector3d::Zero();
-  Eigen::Vector3d s2 = Eigen::Vector3d::Zero();
-  const double wd = static_cast<double>(w);
-  for (std::size_t c = first; c <= last; ++c) {
-    const std::size_t lo = c - half;
-    const std::size_t hi = c + half;  // inclusive
-    if ((c - first) % resync == 0) {
-      s1.setZero();
-      s2.setZero();
-      for (std::size_t j = lo; j <= hi; ++j) {
-        const Eigen::Vector3d d = a[j] - ref;
-        s1 += d;
-        s2 += d.cwiseAbs2();
-      }
-    } else {
-      const Eigen::Vector3d add = a[hi] - ref;
-      const Eigen::Vector3d sub = a[lo - 1] - ref;
-      s1 += add - sub;
-      s2 += add.cwiseAbs2() - sub.cwiseAbs2();
-    }
-    const Eigen::Vector3d var = ((s2 - s1.cwiseAbs2() / wd) / (wd - 1.0)).cwiseMax(0.0);
-    stat[c] = std::sqrt(var.sum());
-  }
+  std::vector<double> stat;
+  stat.reserve(n);  // (filled once, in order: no pass to initialise it)
+  stat.resize(first, std::numeric_limits<double>::infinity());
+  ForEachWindow(a, half, [&](std::size_t, double v) { stat.push_back(v); });
+  stat.resize(n, std::numeric_limits<double>::infinity());
+  const std::size_t centres = last + 1 - first;
+  constexpr std::size_t kSample = 65536;
+  const std::size_t stride = centres <= 4 * kSample ? 1 : centres / kSample;
+  std::vector<double> sample;
+  sample.reserve(centres / stride + 1);
+  for (std::size_t c = first; c <= last; c += stride) sample.push_back(stat[c]);
+  auto each_centre = [&](auto&& f) {
+    for (std::size_t c = first; c <= last; ++c) f(stat[c]);
+  };
 
   // Quiet level: a low quantile over the window centres. A log quantised
   // coarser than its noise has many windows with no change at all; half a
   // reading step keeps the threshold above the flicker of one step.
-  std::vector<double> centres(stat.begin() + static_cast<std::ptrdiff_t>(first),
-                              stat.begin() + static_cast<std::ptrdiff_t>(last + 1));
-  const double quiet_raw = Quantile(std::move(centres), options.quiet_quantile);
-  const double step_floor = 0.5 * ResolutionStep(a);
+  const double quiet_raw =
+      QuantileOf(std::move(sample), stride, centres, options.quiet_quantile, each_centre);
+  const double step_floor = 0.5 * scan.resolution_step;
   result.quiet_level = std::max(quiet_raw, step_floor);
   result.threshold = options.threshold_factor * result.quiet_level;
   const SphereFit sphere = GravityInUnits(recording, stat, w, result.threshold);
@@ -296,7 +423,8 @@ DetectResult DetectStatic(const Recording& recording, const DetectOptions& optio
   std::vector<std::uint8_t> clipped;
   std::string clip_limits;
   std::vector<std::size_t> clipped_before;  // clipped samples in [0, i)
-  result.clipped_samples = MarkClipped(a, options.range_mps2, sphere, &clipped, &clip_limits);
+  result.clipped_samples =
+      MarkClipped(a, options.range_mps2, sphere, scan, &clipped, &clip_limits);
   if (result.clipped_samples > 0) {
     clipped_before.assign(n + 1, 0);
     for (std::size_t i = 0; i < n; ++i) clipped_before[i + 1] = clipped_before[i] + clipped[i];
@@ -413,13 +541,19 @@ DetectResult DetectStatic(const Recording& recording, const DetectOptions& optio
       continue;
     }
     std::size_t used = 0;
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    const Eigen::Vector3d r = a[iv.begin];
-    for (const Piece& p : group) {
-      for (std::size_t i = p.begin; i < p.end; ++i) sum += a[i] - r;
-      used += p.end - p.begin;
+    if (group.size() == 1) {
+      // MeanOf over the same samples from the same reference: the same sums.
+      used = group.front().end - group.front().begin;
+      iv.mean = group.front().mean;
+    } else {
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      const Eigen::Vector3d r = a[iv.begin];
+      for (const Piece& p : group) {
+        for (std::size_t i = p.begin; i < p.end; ++i) sum += a[i] - r;
+        used += p.end - p.begin;
+      }
+      iv.mean = r + sum / static_cast<double>(used);
     }
-    iv.mean = r + sum / static_cast<double>(used);
     Eigen::Vector3d sq = Eigen::Vector3d::Zero();
     for (const Piece& p : group) {
       for (std::size_t i = p.begin; i < p.end; ++i) sq += (a[i] - iv.mean).cwiseAbs2();

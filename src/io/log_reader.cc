@@ -7,10 +7,15 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <condition_variable>
 #include <cstring>
+#include <exception>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <numbers>
+#include <system_error>
+#include <thread>
 #include <utility>
 
 #include <fast_float/fast_float.h>
@@ -291,7 +296,11 @@ std::string LogLayout::Describe() const {
   return out;
 }
 
-struct LogScanner::Impl {
+namespace {
+
+// The layout found from a log's first lines and the parser of its lines:
+// LogScanner's state, and ReadLog's, which parses chunks on two threads.
+struct ScannerState {
   std::string source;
   int fd = -1;
   bool owns_fd = false;
@@ -312,7 +321,10 @@ struct LogScanner::Impl {
   std::vector<std::string> warnings;
   double last_progress = -1.0;
 
-  ~Impl() {
+  ScannerState() = default;
+  ScannerState(const ScannerState&) = delete;
+  ScannerState& operator=(const ScannerState&) = delete;
+  ~ScannerState() {
     if (owns_fd && fd >= 0) ::close(fd);
   }
 
@@ -811,37 +823,38 @@ struct LogScanner::Impl {
   }
 
   // Why a data line did not parse; the message is only built then (Problem).
+  // Kept by the caller, so that ReadLog's two threads can parse at once.
   enum class Failure { kTooFew, kBadNumber, kNonFinite };
-  Failure failure = Failure::kTooFew;
-  int failure_column = 0;
-  const char* failure_at = nullptr;
-  const char* failure_end = nullptr;
+  struct LineFailure {
+    Failure kind = Failure::kTooFew;
+    int column = 0;
+    const char* at = nullptr;
+    const char* end = nullptr;
+  };
+  LineFailure failure;  // LogScanner's
 
-  bool Fail(Failure kind, int column, const char* at, const char* end_of_number = nullptr) {
-    failure = kind;
-    failure_column = column;
-    failure_at = at;
-    failure_end = end_of_number;
+  static bool Fail(LineFailure* why, Failure kind, int column, const char* at,
+                   const char* end_of_number = nullptr) {
+    *why = {kind, column, at, end_of_number};
     return false;
   }
 
-  std::string Problem(std::string_view text) const {
-    switch (failure) {
+  std::string Problem(std::string_view text, const LineFailure& why) const {
+    switch (why.kind) {
       case Failure::kTooFew:
-        return TooFew(text, failure_column);
+        return TooFew(text, why.column);
       case Failure::kBadNumber:
-        return BadNumber(text, failure_column, failure_at);
+        return BadNumber(text, why.column, why.at);
       case Failure::kNonFinite:
         return fmt::format("non-finite value '{}' in {}; remove or fix the line",
-                           std::string_view(failure_at, failure_end - failure_at),
-                           ColumnLabel(failure_column));
+                           std::string_view(why.at, why.end - why.at), ColumnLabel(why.column));
     }
     return "";
   }
 
   // Parses one data line; false when malformed (then Problem says why). The
   // hot path: no allocation, one pass, fast_float for the numbers.
-  bool ParseData(std::string_view text, LogLine* out) {
+  bool ParseData(std::string_view text, LogLine* out, LineFailure* why) const {
     const char* const line_begin = text.data();
     const char* p = line_begin;
     const char* const stop = line_begin + text.size();
@@ -850,9 +863,9 @@ struct LogScanner::Impl {
       // Find the field start.
       if (delimiter == ' ') {
         while (p < stop && IsBlank(*p)) ++p;
-        if (p == stop) return Fail(Failure::kTooFew, column, p);
+        if (p == stop) return Fail(why, Failure::kTooFew, column, p);
       } else if (column > 0) {
-        if (p == stop) return Fail(Failure::kTooFew, column, p);
+        if (p == stop) return Fail(why, Failure::kTooFew, column, p);
         ++p;  // the delimiter
       }
       const Role role = roles[column];
@@ -876,15 +889,17 @@ struct LogScanner::Impl {
       const bool at_end =
           after == stop || IsBlank(*after) || (delimiter != ' ' && *after == delimiter);
       if (result.ec != std::errc() || !at_end || (p != number_begin && *p == '-')) {
-        return Fail(Failure::kBadNumber, column, number_begin);
+        return Fail(why, Failure::kBadNumber, column, number_begin);
       }
       if (!std::isfinite(value)) {
-        return Fail(Failure::kNonFinite, column, number_begin, after);
+        return Fail(why, Failure::kNonFinite, column, number_begin, after);
       }
       p = after;
       if (delimiter != ' ') {
         while (p < stop && IsBlank(*p)) ++p;
-        if (p != stop && *p != delimiter) return Fail(Failure::kBadNumber, column, number_begin);
+        if (p != stop && *p != delimiter) {
+          return Fail(why, Failure::kBadNumber, column, number_begin);
+        }
       }
       switch (role) {
         case kTime:
@@ -922,6 +937,10 @@ struct LogScanner::Impl {
   }
 };
 
+}  // namespace
+
+struct LogScanner::Impl : ScannerState {};
+
 LogScanner::LogScanner(const std::string& path, const LogOptions& options, bool parse_gyro)
     : impl_(std::make_unique<Impl>()) {
   const std::string problem = options.Validate();
@@ -957,11 +976,11 @@ bool LogScanner::Next(LogLine* line) {
     line->is_data = !other;
     if (other) return true;
     if (s.layout.time_column < 0) line->time_raw = static_cast<double>(s.data_rows);
-    if (s.ParseData(text, line)) {
+    if (s.ParseData(text, line, &s.failure)) {
       ++s.data_rows;
       return true;
     }
-    pending = s.Problem(text);
+    pending = s.Problem(text, s.failure);
     pending_line = s.line_number;
   }
   if (!pending.empty()) {
@@ -972,53 +991,498 @@ bool LogScanner::Next(LogLine* line) {
   return false;
 }
 
+namespace {
+
+// ReadLog's parser of a data line when the delimiter is one character: plain
+// fields straight to fast_float, and false for anything else (blanks or a '+'
+// before a number, a blank after it, too few fields, a bad or non-finite
+// value), which ParseData then parses: the same values, and its message.
+// ParseData's generality cost a CSV log a fifth more time than fast_float.
+bool ParsePlainRow(const ScannerState& s, std::string_view text, LogLine* out) {
+  const char* p = text.data();
+  const char* const stop = p + text.size();
+  const char delimiter = s.layout.delimiter;
+  const Role* const roles = s.roles.data();
+  for (int column = 0; column <= s.last_needed; ++column) {
+    if (column > 0) {
+      if (p == stop) return false;
+      ++p;  // the delimiter (where the previous field stopped)
+    }
+    const Role role = roles[column];
+    if (role == kNone) {
+      const auto* d = static_cast<const char*>(std::memchr(p, delimiter, stop - p));
+      p = d ? d : stop;
+      continue;
+    }
+    if (p == stop || IsBlank(*p) || *p == '+') return false;
+    double value = 0.0;
+    const auto result = fast_float::from_chars_advanced(p, stop, value, s.number_format);
+    if (result.ec != std::errc() || (result.ptr != stop && *result.ptr != delimiter) ||
+        !std::isfinite(value)) {
+      return false;
+    }
+    p = result.ptr;
+    if (role == kTime) {
+      out->time_raw = value;
+    } else if (role <= kAz) {
+      out->accel[role - kAx] = value;
+    } else {
+      out->gyro[role - kGx] = value;
+    }
+  }
+  return true;
+}
+
+// ReadLog is bound by turning text into numbers, so it parses on two cores:
+// the input is cut into chunks of whole lines, read in file order by
+// whichever thread is free; each is parsed into its own rows; the calling
+// thread merges the parsed chunks in file order into the Recording, with the
+// checks LogScanner + the loop over its lines made (line numbers, the first
+// error in file order, a malformed last line, duplicates, time going back),
+// and the same messages. Memory: kChunksInFlight chunks at most.
+constexpr std::size_t kPipelineChunkBytes = std::size_t{1} << 20;
+constexpr std::size_t kChunksInFlight = 4;
+
+struct Chunk {
+  enum class State { kFree, kBusy, kParsed };
+  State state = State::kFree;
+  std::size_t sequence = 0;
+  // Whole lines (the input's last line may lack its end); `size` bytes used.
+  std::unique_ptr<char[]> bytes;
+  std::size_t capacity = 0;
+  std::size_t size = 0;
+  // Reading stopped here: a read error, or a line with no end in sight.
+  std::string read_error;
+  bool line_too_long = false;
+
+  // Parsed: one entry per data line before the first malformed one. `time`
+  // is in seconds, or the chunk's own row index when the log has no time
+  // column (the merge knows the rows before it).
+  std::vector<double> time;
+  std::vector<Eigen::Vector3d> accel;
+  std::vector<Eigen::Vector3d> gyro;
+  std::size_t lines = 0;          // lines in the chunk
+  std::size_t last_row_line = 0;  // 1-based within the chunk
+  std::size_t first_row_bytes = 0;
+  bool has_content = false;  // a line that is not blank (ends a pending failure)
+  std::size_t failure_line = 0;  // first malformed data line, 0 for none
+  std::string failure;
+  bool failure_fatal = false;  // something but blank lines follows it
+  std::exception_ptr error;    // from parsing (out of memory)
+};
+
+class ChunkPipeline {
+ public:
+  ChunkPipeline(ScannerState& s, double time_scale, double gyro_scale)
+      : s_(s),
+        time_scale_(time_scale),
+        gyro_scale_(gyro_scale),
+        index_time_(s.layout.time_column < 0),
+        gyro_(s.layout.has_gyro()) {
+    // The first chunk starts with what the layout was found from.
+    carry_.assign(s.buf.data() + s.begin, s.buf.data() + s.end);
+    consumed_ = s.begin;
+    std::vector<char>().swap(s.buf);
+    s.begin = s.end = 0;
+  }
+
+  ~ChunkPipeline() { StopHelper(); }
+
+  void StartHelper() {
+    try {
+      helper_ = std::thread([this] {
+        while (Chunk* c = Claim(/*wait=*/true)) Parse(c);
+      });
+    } catch (const std::system_error&) {
+      // No second thread: the calling thread does it all.
+    }
+  }
+
+  void StopHelper() {
+    {
+      std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    ready_.notify_all();
+    if (helper_.joinable()) helper_.join();
+  }
+
+  // The next chunk in file order once parsed; nullptr after the last. The
+  // calling thread reads and parses chunks too while it waits.
+  Chunk* NextParsed() {
+    while (true) {
+      {
+        std::unique_lock lock(mutex_);
+        Chunk& next = slots_[merged_ % kChunksInFlight];
+        if (next.state == Chunk::State::kParsed && next.sequence == merged_) return &next;
+        if (input_done_ && merged_ == claimed_) return nullptr;
+      }
+      if (Chunk* c = Claim(/*wait=*/false)) {
+        Parse(c);
+        continue;
+      }
+      std::unique_lock lock(mutex_);
+      ready_.wait(lock, [&] {
+        const Chunk& next = slots_[merged_ % kChunksInFlight];
+        return (next.state == Chunk::State::kParsed && next.sequence == merged_) ||
+               (input_done_ && merged_ == claimed_) || (!helper_.joinable() && !input_done_);
+      });
+    }
+  }
+
+  void Release(Chunk* c) {
+    consumed_ += c->size;
+    {
+      std::lock_guard lock(mutex_);
+      c->state = Chunk::State::kFree;
+      ++merged_;
+    }
+    ready_.notify_all();
+  }
+
+  // Bytes of the input merged so far.
+  std::uint64_t consumed() const { return consumed_; }
+  std::size_t HeaderLineOf(const Chunk& c) const {
+    return c.sequence == 0 ? s_.layout.header_line : 0;
+  }
+
+ private:
+  // Claims the next chunk in file order and reads it; nullptr when the input
+  // has ended, or when there is no free slot and `wait` is false.
+  Chunk* Claim(bool wait) {
+    std::unique_lock read_lock(read_mutex_, std::defer_lock);
+    if (wait) {
+      read_lock.lock();
+    } else if (!read_lock.try_lock()) {
+      return nullptr;
+    }
+    Chunk* c = nullptr;
+    {
+      std::unique_lock lock(mutex_);
+      auto free = [&] { return slots_[claimed_ % kChunksInFlight].state == Chunk::State::kFree; };
+      if (wait) ready_.wait(lock, [&] { return stop_ || input_done_ || free(); });
+      if (stop_ || input_done_ || !free()) return nullptr;
+      c = &slots_[claimed_ % kChunksInFlight];
+      c->state = Chunk::State::kBusy;
+      c->sequence = claimed_;
+    }
+    bool got = true;
+    c->error = nullptr;
+    try {
+      got = Read(c);
+    } catch (...) {  // out of memory: reported when this chunk's turn comes
+      c->error = std::current_exception();
+      c->size = 0;
+    }
+    std::lock_guard lock(mutex_);
+    if (!got) {
+      c->state = Chunk::State::kFree;
+      input_done_ = true;
+      ready_.notify_all();
+      return nullptr;
+    }
+    ++claimed_;
+    if (!c->read_error.empty() || c->line_too_long || c->error) input_done_ = true;
+    return c;
+  }
+
+  // Fills `c` with the carried-over bytes and whole lines read after them,
+  // about kPipelineChunkBytes; false when the input has ended.
+  bool Read(Chunk* c) {
+    c->read_error.clear();
+    c->line_too_long = false;
+    std::size_t size = carry_.size();
+    std::size_t want = std::max(kPipelineChunkBytes, size);
+    Reserve(c, want, 0);
+    std::memcpy(c->bytes.get(), carry_.data(), size);
+    carry_.clear();
+    while (true) {
+      while (!s_.eof && size < want) {
+        const ssize_t n = ::read(s_.fd, c->bytes.get() + size, want - size);
+        if (n < 0) {
+          if (errno == EINTR) continue;
+          c->read_error = fmt::format("error reading '{}': {}", s_.source, std::strerror(errno));
+          break;
+        }
+        if (n == 0) {
+          s_.eof = true;
+          break;
+        }
+        size += static_cast<std::size_t>(n);
+      }
+      if (size == 0 && c->read_error.empty()) return false;
+      if (s_.eof && c->read_error.empty()) break;  // the rest of the input
+      // Cut after the last line end; the rest begins the next chunk. (A
+      // read error comes after the whole lines before it.)
+      const char* const data = c->bytes.get();
+      const auto* nl = static_cast<const char*>(::memrchr(data, '\n', size));
+      if (nl != nullptr) {
+        const std::size_t cut = static_cast<std::size_t>(nl - data) + 1;
+        if (c->read_error.empty()) carry_.assign(data + cut, data + size);
+        size = cut;
+        break;
+      }
+      if (!c->read_error.empty()) {
+        size = 0;
+        break;
+      }
+      // One line so far, from the chunk's start (the carry starts a line).
+      if (size >= kMaxLineBytes) {
+        c->line_too_long = true;
+        size = 0;
+        break;
+      }
+      want = size + kPipelineChunkBytes;
+      Reserve(c, want, size);
+    }
+    c->size = size;
+    return true;
+  }
+
+  // Room for `bytes` in `c`, keeping its first `keep` bytes.
+  static void Reserve(Chunk* c, std::size_t bytes, std::size_t keep) {
+    if (c->capacity >= bytes) return;
+    auto grown = std::make_unique_for_overwrite<char[]>(bytes);
+    if (keep > 0) std::memcpy(grown.get(), c->bytes.get(), keep);
+    c->bytes = std::move(grown);
+    c->capacity = bytes;
+  }
+
+  void Parse(Chunk* c) {
+    try {
+      if (!c->error) ParseLines(c);
+    } catch (...) {
+      c->error = std::current_exception();
+    }
+    {
+      std::lock_guard lock(mutex_);
+      c->state = Chunk::State::kParsed;
+    }
+    ready_.notify_all();
+  }
+
+  // LogScanner::Next over a chunk, keeping the rows.
+  void ParseLines(Chunk* c) const {
+    c->time.clear();
+    c->accel.clear();
+    c->gyro.clear();
+    c->lines = 0;
+    c->last_row_line = 0;
+    c->first_row_bytes = 0;
+    c->has_content = false;
+    c->failure_line = 0;
+    c->failure.clear();
+    c->failure_fatal = false;
+    const std::size_t header_line = HeaderLineOf(*c);
+    const char* p = c->bytes.get();
+    const char* const end = p + c->size;
+    std::size_t line = 0;
+    LogLine row;
+    ScannerState::LineFailure why;
+    const bool plain = s_.layout.delimiter != ' ';
+    while (p < end) {
+      const auto* nl = static_cast<const char*>(std::memchr(p, '\n', end - p));
+      const char* const stop = nl ? nl : end;
+      std::string_view text(p, static_cast<std::size_t>(stop - p));
+      if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
+      const char* const line_begin = p;
+      p = nl ? nl + 1 : end;
+      ++line;
+      if (c->failure_line > 0) {
+        if (Trim(text).empty()) continue;
+        c->failure_fatal = true;
+        break;
+      }
+      if (!c->has_content) c->has_content = !Trim(text).empty();
+      if (line == header_line || ScannerState::IsCommentOrBlank(text)) continue;
+      if (index_time_) row.time_raw = static_cast<double>(c->time.size());
+      if (!(plain && ParsePlainRow(s_, text, &row)) && !s_.ParseData(text, &row, &why)) {
+        c->failure_line = line;
+        c->failure = s_.Problem(text, why);
+        continue;
+      }
+      if (c->time.empty()) c->first_row_bytes = static_cast<std::size_t>(p - line_begin);
+      c->time.push_back(index_time_ ? row.time_raw : row.time_raw * time_scale_);
+      c->accel.push_back(row.accel);
+      if (gyro_) c->gyro.push_back(row.gyro * gyro_scale_);
+      c->last_row_line = line;
+    }
+    // Lines after a fatal failure are not needed (the merge stops there).
+    c->lines = line;
+  }
+
+  ScannerState& s_;
+  const double time_scale_;
+  const double gyro_scale_;
+  const bool index_time_;
+  const bool gyro_;
+  std::thread helper_;
+
+  std::mutex read_mutex_;  // reading: one thread at a time, in file order
+  std::vector<char> carry_;
+  std::uint64_t consumed_ = 0;  // the merging thread's
+
+  std::mutex mutex_;
+  std::condition_variable ready_;
+  std::array<Chunk, kChunksInFlight> slots_;
+  std::size_t claimed_ = 0;  // chunks read
+  std::size_t merged_ = 0;
+  bool input_done_ = false;
+  bool stop_ = false;
+};
+
+// 1-based line (within the chunk) of the chunk's `row`th stored row: only
+// needed for messages, so found again by walking the lines.
+std::size_t LineOfRow(const Chunk& c, std::size_t row, std::size_t header_line) {
+  const char* p = c.bytes.get();
+  const char* const end = p + c.size;
+  std::size_t line = 0;
+  std::size_t rows = 0;
+  while (p < end) {
+    const auto* nl = static_cast<const char*>(std::memchr(p, '\n', end - p));
+    const char* const stop = nl ? nl : end;
+    std::string_view text(p, static_cast<std::size_t>(stop - p));
+    if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
+    p = nl ? nl + 1 : end;
+    ++line;
+    if (line == header_line || ScannerState::IsCommentOrBlank(text)) continue;
+    if (rows++ == row) return line;
+  }
+  return line;
+}
+
+}  // namespace
+
 Recording ReadLog(const std::string& path, const LogOptions& options) {
-  LogScanner scanner(path, options, /*parse_gyro=*/true);
-  const LogLayout& layout = scanner.layout();
+  const std::string problem = options.Validate();
+  if (!problem.empty()) throw Error("log options: " + problem);
+  ScannerState s;
+  s.options = options;
+  s.Open(path);
+  s.Detect(/*parse_gyro=*/true);
+  const LogLayout& layout = s.layout;
+
   Recording rec;
   rec.units = options.units;
-  rec.source = scanner.source();
+  rec.source = s.source;
   const bool gyro = layout.has_gyro();
+  const bool index_time = layout.time_column < 0;
   const double gyro_scale = options.gyro_in_dps ? std::numbers::pi / 180.0 : 1.0;
   const double time_scale = layout.seconds_per_time_unit;
 
-  LogLine line;
+  ChunkPipeline pipeline(s, time_scale, gyro_scale);
+  pipeline.StartHelper();
+
+  std::size_t line_base = 0;  // lines before the chunk being merged
+  std::size_t rows_before = 0;
   std::size_t duplicates = 0;
   std::size_t first_duplicate_line = 0;
-  std::size_t previous_line = 0;
+  std::size_t previous_line = 0;  // of the last row kept
+  std::size_t pending_line = 0;   // a malformed line, fatal unless nothing follows it
+  std::string pending;
   bool reserved = false;
-  while (scanner.Next(&line)) {
-    if (!line.is_data) continue;
-    const double t = line.time_raw * time_scale;
-    if (!rec.time_s.empty()) {
-      const double previous = rec.time_s.back();
-      if (t == previous) {
-        if (duplicates++ == 0) first_duplicate_line = line.line_number;
-        continue;
+  while (Chunk* c = pipeline.NextParsed()) {
+    const std::size_t header_line = pipeline.HeaderLineOf(*c);
+    if (c->error) std::rethrow_exception(c->error);
+    if (pending.empty() || !c->has_content) {
+      const std::size_t rows = c->time.size();
+      if (index_time) {
+        for (std::size_t j = 0; j < rows; ++j) {
+          c->time[j] = static_cast<double>(rows_before + j) * time_scale;
+        }
       }
-      if (t < previous) {
+      if (!reserved && rows > 0 && s.total > 0) {
+        // Size the arrays once, from the first line's length (or the
+        // chunk's average, if shorter), so that a long log does not pay for
+        // repeated doubling (and twice the memory).
+        const double bytes_per_row = std::min(static_cast<double>(c->first_row_bytes),
+                                              static_cast<double>(c->size) / rows);
+        const auto estimate = static_cast<std::size_t>(
+            1.1 * static_cast<double>(s.total) / std::max(bytes_per_row, 8.0));
+        rec.time_s.reserve(estimate);
+        rec.accel.reserve(estimate);
+        if (gyro) rec.gyro_radps.reserve(estimate);
+        reserved = true;
+      }
+      // The file's line number of a row of this chunk.
+      auto line_of = [&](std::size_t row) {
+        return line_base +
+               (row + 1 == rows ? c->last_row_line : LineOfRow(*c, row, header_line));
+      };
+      std::size_t j = 0;
+      std::size_t last_kept = rows;  // none yet in this chunk
+      while (j < rows) {
+        // A run of rows each later than the one before: copied at once.
+        std::size_t k = j;
+        double previous = 0.0;
+        if (rec.time_s.empty()) {
+          previous = c->time[k++];  // the first row has nothing to follow
+        } else {
+          previous = rec.time_s.back();
+        }
+        while (k < rows && c->time[k] > previous) previous = c->time[k++];
+        if (k > j) {
+          rec.time_s.insert(rec.time_s.end(), c->time.begin() + j, c->time.begin() + k);
+          rec.accel.insert(rec.accel.end(), c->accel.begin() + j, c->accel.begin() + k);
+          if (gyro) {
+            rec.gyro_radps.insert(rec.gyro_radps.end(), c->gyro.begin() + j,
+                                  c->gyro.begin() + k);
+          }
+          last_kept = k - 1;
+        }
+        if (k == rows) break;
+        const double t = c->time[k];
+        const double before = rec.time_s.back();
+        if (t == before) {
+          if (duplicates++ == 0) first_duplicate_line = line_of(k);
+          j = k + 1;
+          continue;
+        }
+        if (last_kept < rows) previous_line = line_of(last_kept);
         throw Error(fmt::format(
             "{}:{}: time goes back: {:.9g} s after {:.9g} s on line {}; the rows must be in "
             "time order",
-            rec.source, line.line_number, t, previous, previous_line));
+            rec.source, line_of(k), t, before, previous_line));
       }
-    } else if (!reserved && scanner.total_bytes() > 0) {
-      // Size the arrays once from the first line's length, so that a long
-      // log does not pay for repeated doubling (and twice the memory).
-      const double bytes_per_row = static_cast<double>(line.text.size() + line.eol.size());
-      const auto estimate = static_cast<std::size_t>(
-          1.1 * static_cast<double>(scanner.total_bytes()) / std::max(bytes_per_row, 8.0));
-      rec.time_s.reserve(estimate);
-      rec.accel.reserve(estimate);
-      if (gyro) rec.gyro_radps.reserve(estimate);
-      reserved = true;
+      if (last_kept < rows) previous_line = line_of(last_kept);
+      rows_before += rows;
+      if (c->failure_line > 0) {
+        if (c->failure_fatal) {
+          throw Error(fmt::format("{}:{}: {}", rec.source, line_base + c->failure_line,
+                                  c->failure));
+        }
+        pending_line = line_base + c->failure_line;
+        pending = c->failure;
+      }
+    } else {
+      throw Error(fmt::format("{}:{}: {}", rec.source, pending_line, pending));
     }
-    previous_line = line.line_number;
-    rec.time_s.push_back(t);
-    rec.accel.push_back(line.accel);
-    if (gyro) rec.gyro_radps.push_back(line.gyro * gyro_scale);
+    line_base += c->lines;
+    if (c->line_too_long) {
+      throw Error(fmt::format(
+          "{}:{}: line longer than {} KiB: this does not look like a text log", rec.source,
+          line_base + 1, kMaxLineBytes / 1024));
+    }
+    if (!c->read_error.empty()) throw Error(c->read_error);
+    pipeline.Release(c);
+    if (s.options.progress && s.total > 0) {
+      const double fraction =
+          std::min(1.0, static_cast<double>(pipeline.consumed()) / static_cast<double>(s.total));
+      if (fraction - s.last_progress >= 0.01) {
+        s.last_progress = fraction;
+        s.options.progress(fraction);
+      }
+    }
   }
-  rec.warnings = scanner.warnings();
+  pipeline.StopHelper();
+  if (s.options.progress && s.total > 0 && s.last_progress < 1.0) s.options.progress(1.0);
+
+  rec.warnings = s.warnings;
+  if (!pending.empty()) {
+    rec.warnings.push_back(fmt::format(
+        "{}:{}: last line is incomplete ({}); ignored, as when a logger is cut off mid-write",
+        rec.source, pending_line, pending));
+  }
   if (rec.empty()) {
     throw Error(fmt::format("'{}' has no data rows{}", rec.source,
                             layout.header_line > 0 ? " after its header" : ""));
