@@ -8,8 +8,15 @@ target_compile_options(mpcal_warnings INTERFACE
   $<$<BOOL:${MPCAL_WARNINGS_AS_ERRORS}>:-Werror>)
 if(MPCAL_SANITIZE)
   target_compile_options(mpcal_warnings INTERFACE
-    -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)
+    -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
+    # GCC 12 false positive on std::string assignment under ASan (GCC PR 105651).
+    $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
   target_link_options(mpcal_warnings INTERFACE -fsanitize=address,undefined)
+  # Under ASan Eigen stops trusting malloc's 16-byte alignment and frees with
+  # its own offset scheme; Debian's Ceres (no ASan) allocates with plain
+  # malloc, so a matrix made in Ceres and freed in our code would be freed
+  # wrongly. Keep Eigen's allocator the same on both sides.
+  target_compile_definitions(mpcal_warnings INTERFACE EIGEN_MALLOC_ALREADY_ALIGNED=1)
 endif()
 
 # mpcal_room(NAME SOURCES a.cc b.cc [PUBLIC deps...] [PRIVATE deps...])

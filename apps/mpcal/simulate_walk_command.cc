@@ -3,6 +3,7 @@
 // on request, the true path.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -63,21 +64,37 @@ void RunSimulateWalk(const SimulateWalkFlags& f) {
           ? f.gravity.Resolve()
           : NormalGravityMps2(o.origin.latitude_deg, o.origin.height_m);
   const SimulatedWalk walk = SimulateWalk(o, gravity);
-  WriteRecordingFile(f.output, walk.recording);
-  WriteFileAtomically(f.gnss, FormatRtklibPos(walk.gnss, TimeSystem::kGpst));
-  if (!f.truth.empty()) WriteCalibrationFile(f.truth, walk.truth);
-  if (!f.path.empty()) {
-    WriteStreamAtomically(f.path, [&](std::ostream& out) {
-      out << "t_s,e_m,n_m,u_m\n";
-      for (std::size_t i = 0; i < walk.true_enu_m.size(); ++i) {
-        const Eigen::Vector3d& p = walk.true_enu_m[i];
-        out << fmt::format("{:.4f},{:.4f},{:.4f},{:.4f}\n",
-                           walk.recording.time_s[i],
-                           p.x(),
-                           p.y(),
-                           p.z());
-      }
-    });
+  // Several files: when one cannot be written, take back those already
+  // written, so that no partial output is left.
+  std::vector<std::string> written;
+  try {
+    WriteRecordingFile(f.output, walk.recording);
+    written.push_back(f.output);
+    WriteFileAtomically(f.gnss, FormatRtklibPos(walk.gnss, TimeSystem::kGpst));
+    written.push_back(f.gnss);
+    if (!f.truth.empty()) {
+      WriteCalibrationFile(f.truth, walk.truth);
+      written.push_back(f.truth);
+    }
+    if (!f.path.empty()) {
+      WriteStreamAtomically(f.path, [&](std::ostream& out) {
+        out << "t_s,e_m,n_m,u_m\n";
+        for (std::size_t i = 0; i < walk.true_enu_m.size(); ++i) {
+          const Eigen::Vector3d& p = walk.true_enu_m[i];
+          out << fmt::format("{:.4f},{:.4f},{:.4f},{:.4f}\n",
+                             walk.recording.time_s[i],
+                             p.x(),
+                             p.y(),
+                             p.z());
+        }
+      });
+    }
+  } catch (const Error&) {
+    std::error_code ec;
+    for (const std::string& path : written) {
+      if (path != "-") std::filesystem::remove(path, ec);
+    }
+    throw;
   }
   if (f.output == "-") return;
   const Recording& r = walk.recording;

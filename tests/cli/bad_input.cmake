@@ -146,3 +146,15 @@ mpcal_cli_test(bad_simulate_too_long EXIT 1 MATCH "the limit is"
   ABSENT s.csv ARGS simulate static --positions 100000 --dwell 1000 -o s.csv)
 mpcal_cli_test(bad_calibrate_zero_range EXIT 2 MATCH "--range: must be a positive number"
   ABSENT out.json ARGS calibrate ${GOOD_LOG} --range 0 -o out.json)
+
+# Clipped readings: --range below 1 g puts every position of this session at
+# the limit; they are all dropped and the error says why.
+mpcal_cli_test(bad_calibrate_all_clipped EXIT 1
+  MATCH "5 dropped because they contain readings at the sensor's range limit \\(\\|x\\| >= 8\\.73773"
+  ABSENT out.json ARGS calibrate ${GOOD_LOG} --range 0.9 -o out.json)
+mpcal_cli_test(bad_detect_all_clipped EXIT 1
+  MATCH "note: position 0\\.8-3\\.4 s dropped: [0-9]+ of its samples are at the sensor's range limit"
+  ARGS detect ${GOOD_LOG} --range 0.9)
+# Regression: simulate walk left the files written before the one that failed.
+mpcal_cli_test(bad_output_walk_truth_unwritable EXIT 1 MATCH "is a directory"
+  ABSENT w.csv g.pos ARGS simulate walk -o w.csv --gnss g.pos --truth .)
