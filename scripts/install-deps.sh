@@ -4,8 +4,7 @@
 # `apt-get update` first only when there is something to install. When not
 # root it prints the apt-get command instead of running it.
 #
-#   scripts/install-deps.sh            build + test dependencies
-#   scripts/install-deps.sh --browser  also chromium (report rendering tests)
+#   scripts/install-deps.sh            build, test, bench and fuzz dependencies
 set -euo pipefail
 
 packages=(
@@ -20,6 +19,7 @@ packages=(
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev
   chromium             # headless rendering of the HTML report in tests
+  python3              # checks the rendered report's DOM and screenshot
   clang                # libFuzzer targets (make fuzz)
 )
 

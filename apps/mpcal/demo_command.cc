@@ -1,11 +1,15 @@
-// mpcal demo: the main job with no input. Simulates an MTi-G-like session,
-// calibrates it exactly as `mpcal calibrate` would, and prints the estimate
-// beside the truth and the Cramér-Rao bound, so a new user sees in one screen
-// what mpcal does and how close to the limit it gets.
+// mpcal demo: the main job with no input. Simulates a session of a device
+// preset, calibrates it exactly as `mpcal calibrate` would, and prints the
+// estimate beside the truth and the Cramér-Rao bound, so a new user sees in
+// one screen what mpcal does and how close to the limit it gets. Then the
+// rest of the workflow on the same simulated device: two more power-ups
+// (repeatability) and a walked loop against GNSS (verification), all in one
+// report.
 #include <cmath>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -13,8 +17,13 @@
 #include "command.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/calibration_file.h"
+#include "mpcal/gnss.h"
+#include "mpcal/repeat.h"
+#include "mpcal/report.h"
 #include "mpcal/simulate.h"
+#include "mpcal/simulate_walk.h"
 #include "mpcal/simulated_bound.h"
+#include "mpcal/verify.h"
 
 namespace mpcal::cli {
 namespace {
@@ -24,6 +33,38 @@ struct DemoFlags {
   std::uint64_t seed = 1;
   std::string output_dir = "mpcal-demo";
 };
+
+// The calibrated session counts as the first power-up; two more of the same
+// device follow, each with its bias drawn anew.
+constexpr int kTrials = 3;
+
+RepeatabilityResult DemoRepeatability(const SimulateStaticOptions& sim,
+                                      const Calibration& first) {
+  std::vector<Calibration> trials{first};
+  const std::vector<SimulateStaticOptions> later = TrialOptions(sim, kTrials);
+  for (int i = 1; i < kTrials; ++i) {
+    const SimulatedSession session = SimulateStatic(later[static_cast<std::size_t>(i)]);
+    trials.push_back(CalibrateRecording(session.recording, CalibrateOptions{}).calibration);
+  }
+  return AnalyzeRepeatability(trials);
+}
+
+// A loop walked with the sensor turning at each corner (gyroscope on), so
+// that the accelerometer errors show in the path; the reference goes through
+// the RTKLIB .pos text a user's file would hold.
+VerifyResult DemoVerification(const SimulateStaticOptions& sim,
+                              const Calibration& calibration) {
+  SimulateWalkOptions walk_options;
+  walk_options.device = sim.device;
+  walk_options.seed = sim.seed;
+  walk_options.turn = true;
+  const SimulatedWalk walk = SimulateWalk(walk_options);
+  const GnssTrack reference =
+      ParseGnss(FormatRtklibPos(walk.gnss, TimeSystem::kGpst), "<simulated GNSS>");
+  VerifyOptions options;
+  options.integrate.gravity_mps2 = calibration.gravity_mps2;
+  return Verify(walk.recording, reference, calibration, options);
+}
 
 void Run(const DemoFlags& f) {
   SimulateStaticOptions sim;
@@ -48,12 +89,37 @@ void Run(const DemoFlags& f) {
              std::sqrt(z.squaredNorm() / 9.0));
   PrintWarnings(result.warnings);
 
+  const RepeatabilityResult repeatability = DemoRepeatability(sim, result.calibration);
+  fmt::print("\nRepeatability over {} power-ups of this device (this session and {} more):\n{}",
+             kTrials, kTrials - 1, RepeatabilityVerdict(repeatability));
+
+  const VerifyResult verification = DemoVerification(sim, result.calibration);
+  fmt::print("\nWalked loop against GNSS: the end lands {:.2f} m from the start with raw "
+             "readings, {:.2f} m corrected (reference {:.2f} m, path {:.0f} m).\n",
+             verification.raw.start_end_distance_m,
+             verification.corrected->start_end_distance_m,
+             verification.reference.start_end_distance_m,
+             verification.reference.path_length_m);
+
   std::filesystem::create_directories(f.output_dir);
   const std::string truth_path = f.output_dir + "/truth.json";
   const std::string calib_path = f.output_dir + "/calib.json";
+  const std::string report_path = f.output_dir + "/report.html";
   WriteCalibrationFile(truth_path, session.truth);
   WriteCalibrationFile(calib_path, result.calibration);
-  fmt::print("\nwrote {} and {}\n", calib_path, truth_path);
+
+  ReportInputs report;
+  report.title = "mpcal demo report";
+  report.calibration = result.calibration;
+  report.session = ReportSession{session.recording, result.detection};
+  report.repeatability = repeatability;
+  report.verification = SummarizeVerification(verification);
+  report.input_files = {{"calibration", calib_path}, {"truth", truth_path}};
+  report.command_line = fmt::format("mpcal demo --preset {} --seed {} --output-dir {}",
+                                    f.preset, f.seed, f.output_dir);
+  WriteReport(report_path, report);
+  fmt::print("\nwrote {}, {} and {} (open it in a browser)\n", calib_path, truth_path,
+             report_path);
 }
 
 }  // namespace
@@ -61,7 +127,9 @@ void Run(const DemoFlags& f) {
 void AddDemoCommand(CLI::App& root) {
   auto flags = std::make_shared<DemoFlags>();
   CLI::App* app = root.add_subcommand(
-      "demo", "Simulate a session with known errors, calibrate it, compare with the truth");
+      "demo",
+      "Simulate a device, calibrate it, compare with the truth; write a report with "
+      "every section");
   app->add_option("--preset", flags->preset, "Device: colibri, inertiacube3 or mti-g")
       ->capture_default_str();
   app->add_option("--seed", flags->seed, "Random seed")->capture_default_str();

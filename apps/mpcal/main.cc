@@ -34,12 +34,12 @@ int main(int argc, char** argv) {
   app.footer("Run 'mpcal SUBCOMMAND --help' for the options and an example of each.");
   mpcal::cli::AddCalibrateCommand(app);
   mpcal::cli::AddDetectCommand(app);
-  mpcal::cli::AddDemoCommand(app);
   mpcal::cli::AddApplyCommand(app);
-  mpcal::cli::AddSimulateCommand(app);
-  mpcal::cli::AddVerifyCommand(app);
   mpcal::cli::AddRepeatCommand(app);
-  // TODO(integration): one line per subcommand as they land.
+  mpcal::cli::AddVerifyCommand(app);
+  mpcal::cli::AddSimulateCommand(app);
+  mpcal::cli::AddReportCommand(app);
+  mpcal::cli::AddDemoCommand(app);
 
   try {
     app.parse(argc, argv);

@@ -31,3 +31,12 @@ mpcal_cli_test(calibrate_latitude_out_of_range EXIT 2 MATCH "--latitude" ABSENT 
 mpcal_cli_test(demo EXIT 0
   MATCH "^RMS of \\(estimate - truth\\) / Cramér-Rao bound over the 9 parameters: [0-9.]+"
   ARGS demo --output-dir out)
+mpcal_cli_test(demo_repeatability EXIT 0
+  MATCH "^bias x, y, z changed between sessions beyond their 1σ"
+  ARGS demo --output-dir out)
+mpcal_cli_test(demo_verification EXIT 0
+  MATCH "^Walked loop against GNSS: the end lands [0-9.]+ m from the start with raw readings, [0-9]\\.[0-9]+ m corrected"
+  ARGS demo --output-dir out)
+mpcal_cli_test(demo_report EXIT 0
+  MATCH "^wrote out/calib.json, out/truth.json and out/report.html"
+  ARGS demo --output-dir out)

@@ -1,0 +1,118 @@
+// mpcal report: the calibration, and optionally its session, repeatability
+// and verification, as one self-contained HTML page.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "cli_options.h"
+#include "command.h"
+#include "mpcal/atomic_file.h"
+#include "mpcal/error.h"
+#include "mpcal/report.h"
+
+namespace mpcal::cli {
+namespace {
+
+struct ReportFlags {
+  ReportFiles files;
+  std::string output;
+};
+
+// The command line again, so that the report says how to make it anew.
+std::string CommandLine(const ReportFlags& f) {
+  std::string line = "mpcal report";
+  auto add = [&line](const char* flag, const std::string& value) {
+    if (!value.empty()) line += fmt::format(" {} {}", flag, value);
+  };
+  add("--calib", f.files.calibration);
+  add("--session", f.files.session);
+  if (!f.files.session.empty()) {
+    add("--columns", f.files.log.columns);
+    if (f.files.log.units != AccelUnits::kMps2) {
+      add("--units", std::string(ToString(f.files.log.units)));
+    }
+    if (f.files.log.time_unit != TimeUnit::kAuto) {
+      add("--time-unit", std::string(ToString(f.files.log.time_unit)));
+    }
+    if (f.files.log.rate_hz > 0) add("--rate", fmt::format("{}", f.files.log.rate_hz));
+    if (f.files.log.gyro_in_dps) line += " --gyro-dps";
+  }
+  add("--repeat", f.files.repeatability);
+  add("--verify", f.files.verification);
+  add("--verify-trajectories", f.files.verification_trajectories);
+  add("-o", f.output);
+  return line;
+}
+
+void Run(const ReportFlags& f) {
+  if (f.files.calibration.empty() && f.files.session.empty() &&
+      f.files.repeatability.empty() && f.files.verification.empty()) {
+    throw Error(
+        "nothing to report: give at least one of --calib, --session, --repeat, "
+        "--verify");
+  }
+  if (!f.files.verification_trajectories.empty() && f.files.verification.empty()) {
+    throw Error("--verify-trajectories needs --verify (the result they belong to)");
+  }
+  ThrowIfInvalid(f.files.Validate(), "mpcal report");
+  for (const std::string& input : {f.files.calibration,
+                                   f.files.session,
+                                   f.files.repeatability,
+                                   f.files.verification}) {
+    if (!input.empty()) RefuseOverwritingInput(input, f.output);
+  }
+  ReportInputs inputs = LoadReportInputs(f.files);
+  inputs.command_line = CommandLine(f);
+  WriteReport(f.output, inputs);
+  if (f.output == "-") return;
+  std::vector<std::string> sections;
+  if (inputs.calibration) sections.emplace_back("calibration");
+  if (inputs.session) sections.emplace_back("session");
+  if (inputs.repeatability) sections.emplace_back("repeatability");
+  if (inputs.verification) sections.emplace_back("verification");
+  fmt::print("wrote {} ({})\n", f.output, fmt::join(sections, ", "));
+}
+
+}  // namespace
+
+void AddReportCommand(CLI::App& root) {
+  auto f = std::make_shared<ReportFlags>();
+  CLI::App* cmd = root.add_subcommand(
+      "report",
+      "Write an HTML report (self-contained: opens from disk, fetches nothing)");
+  cmd->add_option("--calib",
+                  f->files.calibration,
+                  "Calibration file (JSON) from 'mpcal calibrate': parameters, fit, "
+                  "residual of every position, orientations covered");
+  cmd->add_option("--session",
+                  f->files.session,
+                  "The recording the calibration came from: readings against time with "
+                  "the static positions shaded (read with the log options below)");
+  AddLogOptions(*cmd, f->files.log);
+  cmd->add_option("--repeat",
+                  f->files.repeatability,
+                  "Repeatability table from 'mpcal repeat --json'");
+  cmd->add_option(
+      "--verify", f->files.verification, "Verification result from 'mpcal verify -o'");
+  cmd->add_option("--verify-trajectories",
+                  f->files.verification_trajectories,
+                  "PREFIX given to 'mpcal verify --trajectory-csv': plots "
+                  "PREFIX-reference.csv, PREFIX-raw.csv, PREFIX-corrected.csv");
+  cmd->add_option(
+         "-o,--output", f->output, "The HTML file to write ('-': standard output)")
+      ->required();
+  cmd->footer(
+      "Each section appears when its input is given; at least one is needed.\n"
+      "Example:\n"
+      "  mpcal simulate static --preset mti-g --seed 1 -o s.csv --truth t.json\n"
+      "  mpcal calibrate s.csv -o c.json\n"
+      "  mpcal report --calib c.json --session s.csv -o report.html\n"
+      "  mpcal report --calib c.json --repeat rep.json --verify result.json "
+      "--verify-trajectories walk -o report.html");
+  cmd->callback([f] { Run(*f); });
+}
+
+}  // namespace mpcal::cli

@@ -1,0 +1,131 @@
+/// \file report.h
+/// \brief The report: one self-contained HTML page (inline SVG and CSS,
+/// nothing fetched from the network) that shows a calibration and, when they
+/// are given, the session it came from, its repeatability across sessions and
+/// its verification against GNSS.
+///
+/// Each section appears exactly when its input is present in ReportInputs.
+/// Values are SI inside; the page shows the paper's units (bias in mg and
+/// m/s², scale-factor error in ppm, non-orthogonality in mrad).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mpcal/calibration.h"
+#include "mpcal/detect.h"
+#include "mpcal/log_reader.h"
+#include "mpcal/model.h"
+#include "mpcal/recording.h"
+#include "mpcal/repeat.h"
+#include "mpcal/verify.h"
+
+namespace mpcal {
+
+/// A horizontal path in the local east-north frame (m) against time (s).
+struct EastNorthPath {
+  std::vector<double> time_s;
+  std::vector<double> east_m;
+  std::vector<double> north_m;
+};
+
+/// The figures of `mpcal verify` (`"format": "mpcal.verification/1"`) and,
+/// when available, the paths themselves.
+struct VerificationSummary {
+  struct Metrics {
+    double start_end_distance_m = 0.0;
+    std::optional<double> horizontal_rms_m;  ///< to the reference
+    std::optional<double> horizontal_max_m;
+    std::optional<double> path_length_m;
+  };
+  Metrics reference;
+  Metrics raw;
+  std::optional<Metrics> corrected;  ///< only when verified with a calibration
+  std::optional<EastNorthPath> reference_path;
+  std::optional<EastNorthPath> raw_path;
+  std::optional<EastNorthPath> corrected_path;
+  /// Trajectory files named by the result, resolved against its directory
+  /// (role → path); empty when it names none.
+  std::vector<std::pair<std::string, std::string>> trajectory_files;
+  /// How the paths were made (time alignment, mount, gyroscope, stops, ...)
+  /// as (what, value) lines for the report, and the verifier's warnings.
+  std::vector<std::pair<std::string, std::string>> details;
+  std::vector<std::string> warnings;
+};
+
+/// The summary of an in-memory verification, paths included (east and north
+/// of the reference's frame).
+VerificationSummary SummarizeVerification(const VerifyResult& result);
+
+/// Parses the JSON text of a verification result. `origin` names the source
+/// in messages and is the base for relative trajectory paths it names.
+/// Trajectory files are not read here (see LoadReportInputs).
+/// \throws mpcal::Error for malformed JSON, another format, or a missing or
+///   wrongly-typed field.
+VerificationSummary ParseVerificationJson(const std::string& text,
+                                          const std::string& origin);
+
+/// Reads a trajectory CSV with a header naming a time column (`t`, `time`,
+/// `time_s`), an east column (`e`, `east`, `east_m`) and a north column (`n`,
+/// `north`, `north_m`); other columns are ignored.
+/// \throws mpcal::Error when unreadable, a column is missing, or a value is
+///   not a finite number (the message names the line).
+EastNorthPath ReadEastNorthCsv(const std::string& path);
+
+/// The recording a calibration came from, and the static intervals in it.
+struct ReportSession {
+  Recording recording;
+  DetectResult detection;
+};
+
+/// Everything a report can show; every part is optional.
+struct ReportInputs {
+  std::optional<Calibration> calibration;
+  std::optional<ReportSession> session;
+  /// From AnalyzeRepeatability, or RepeatabilityFromJson (which has no
+  /// per-trial 1σ: the spread is then shown in the parameters' units).
+  std::optional<RepeatabilityResult> repeatability;
+  std::optional<VerificationSummary> verification;
+  /// Input files as (role, path), listed in the header.
+  std::vector<std::pair<std::string, std::string>> input_files;
+  /// The command that made the report (shown so it can be reproduced).
+  std::string command_line;
+  /// Date and time shown in the header; empty: now, UTC, ISO 8601.
+  std::string generated_at;
+  /// Page title.
+  std::string title = "mpcal calibration report";
+};
+
+/// The whole HTML page. Never fetches anything: no external references.
+std::string RenderReport(const ReportInputs& inputs);
+
+/// Renders and writes the page atomically (no partial file on failure).
+/// \throws mpcal::Error when the file cannot be written.
+void WriteReport(const std::string& path, const ReportInputs& inputs);
+
+/// The files a report is made from (empty path: section absent).
+struct ReportFiles {
+  std::string calibration;  ///< calibration file (JSON)
+  std::string session;      ///< the recording, read with `log`
+  LogOptions log;
+  DetectOptions detect;
+  std::string repeatability;  ///< "mpcal.repeatability/1" JSON
+  std::string verification;   ///< "mpcal.verification/1" JSON
+  /// Prefix of the trajectory CSVs as `mpcal verify --trajectory-csv PREFIX`
+  /// writes them: PREFIX-reference.csv, PREFIX-raw.csv and (optional)
+  /// PREFIX-corrected.csv. Overrides files the result names.
+  std::string verification_trajectories;
+
+  /// Empty when valid, else names the first bad field.
+  std::string Validate() const;
+};
+
+/// Reads every file named in `files` into ReportInputs (session: read and
+/// static intervals detected). `input_files` is filled; the rest default.
+/// \throws mpcal::Error for a missing, unreadable or malformed file (the
+///   message names it), or invalid options.
+ReportInputs LoadReportInputs(const ReportFiles& files);
+
+}  // namespace mpcal

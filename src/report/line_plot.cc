@@ -1,0 +1,182 @@
+#include "report/line_plot.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mpcal::report {
+
+namespace {
+
+// Room for tick labels and rotated y title on the left, x title below.
+constexpr double kMarginLeft = 74.0;
+constexpr double kMarginRight = 18.0;
+constexpr double kMarginTop = 14.0;
+constexpr double kMarginBottom = 46.0;
+constexpr double kLegendGap = 8.0;
+
+// Ticks at `step` strictly inside a fixed range (equal-scale plots cannot
+// extend their range to the next round number).
+Ticks TicksInside(Interval r, double step) {
+  Ticks t;
+  t.step = step;
+  t.range = r;
+  for (double v = std::ceil(r.lo / step - 1e-9) * step; v <= r.hi + 1e-9 * step;
+       v += step) {
+    t.values.push_back(std::abs(v) < 1e-9 * step ? 0.0 : v);
+  }
+  return t;
+}
+
+}  // namespace
+
+std::string LinePlot(const LinePlotSpec& spec) {
+  std::vector<LegendEntry> legend;
+  for (const Series& s : spec.series) {
+    if (s.name.empty()) continue;
+    SeriesStyle style = s.style;
+    if (!s.markers) style.marker = MarkerShape::kNone;
+    legend.push_back({s.name, style, false, "", s.line});
+  }
+  for (const Annotation& a : spec.annotations) {
+    legend.push_back({a.label, a.style, false, "", false});
+  }
+  legend.insert(legend.end(), spec.extra_legend.begin(), spec.extra_legend.end());
+  const double plot_width = spec.width - kMarginLeft - kMarginRight;
+  const double legend_height = LegendHeight(legend, plot_width);
+
+  PlotArea area{
+      kMarginLeft, kMarginTop, plot_width, spec.height - kMarginTop - kMarginBottom};
+  Svg svg(spec.width,
+          spec.height + (legend_height > 0 ? legend_height + kLegendGap : 0),
+          spec.aria_label);
+
+  std::vector<double> xs;
+  std::vector<double> ys;
+  for (const Series& s : spec.series) {
+    xs.insert(xs.end(), s.x.begin(), s.x.end());
+    ys.insert(ys.end(), s.y.begin(), s.y.end());
+  }
+  for (const Annotation& a : spec.annotations) {
+    xs.push_back(a.x);
+    ys.push_back(a.y);
+  }
+  if (spec.y_reference) ys.push_back(*spec.y_reference);
+  if (spec.y_include) {
+    ys.push_back(spec.y_include->lo);
+    ys.push_back(spec.y_include->hi);
+  }
+  Interval xr = DataRange(xs);
+  Interval yr = DataRange(ys);
+
+  Ticks xt;
+  Ticks yt;
+  if (spec.equal_scale) {
+    xr = Pad(xr, 0.05);
+    yr = Pad(yr, 0.05);
+    const double per_px =
+        std::max((xr.hi - xr.lo) / area.width, (yr.hi - yr.lo) / area.height);
+    const double xc = (xr.lo + xr.hi) / 2;
+    const double yc = (yr.lo + yr.hi) / 2;
+    xr = {xc - per_px * area.width / 2, xc + per_px * area.width / 2};
+    yr = {yc - per_px * area.height / 2, yc + per_px * area.height / 2};
+    // One step for both axes, so the grid is made of squares.
+    const double step = std::max(NiceTicks(xr, 8).step, NiceTicks(yr, 6).step);
+    xt = TicksInside(xr, step);
+    yt = TicksInside(yr, step);
+  } else {
+    xt = NiceTicks(xr, 8);
+    // Padding must not push a range that stops at zero across it (distances).
+    Interval padded = Pad(yr, 0.03);
+    if (yr.lo >= 0 && padded.lo < 0) padded.lo = 0;
+    if (yr.hi <= 0 && padded.hi > 0) padded.hi = 0;
+    yt = NiceTicks(padded, 5);
+    xr = xt.range;
+    yr = yt.range;
+  }
+  const LinearScale x{xr.lo, xr.hi, area.left, area.right()};
+  const LinearScale y{yr.lo, yr.hi, area.bottom(), area.top};
+
+  for (const Band& b : spec.bands) {
+    const double x0 = std::clamp(x(b.x0), area.left, area.right());
+    const double x1 = std::clamp(x(b.x1), area.left, area.right());
+    if (x1 <= x0) continue;
+    svg.Rect(x0, area.top, x1 - x0, area.height, b.css_class);
+    // Labels of bands too narrow to hold them would overlap: left out.
+    if (!b.label.empty() && x1 - x0 >= 6.0 * static_cast<double>(b.label.size()) + 2) {
+      svg.Text((x0 + x1) / 2, area.top + 11, b.label, "band-label", "middle");
+    }
+  }
+  DrawAxes(svg, area, xt, yt, x, y, spec.axes);
+  if (spec.y_reference) {
+    svg.Line(
+        area.left, y(*spec.y_reference), area.right(), y(*spec.y_reference), "reference");
+  }
+
+  for (const Series& s : spec.series) {
+    std::vector<double> px;
+    std::vector<double> py;
+    px.reserve(s.x.size());
+    py.reserve(s.x.size());
+    for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      px.push_back(x(s.x[i]));
+      py.push_back(y(s.y[i]));
+    }
+    svg.OpenGroup("series", s.name);
+    if (s.line) svg.Polyline(px, py, s.style);
+    if (s.markers) {
+      for (std::size_t i = 0; i < px.size(); ++i) {
+        svg.Marker(s.style.marker, px[i], py[i], 7, s.style);
+      }
+    }
+    svg.CloseGroup();
+  }
+  for (const Annotation& a : spec.annotations) {
+    svg.OpenGroup("annotation", a.label);
+    svg.Marker(a.style.marker, x(a.x), y(a.y), a.size, a.style);
+    svg.CloseGroup();
+  }
+  if (legend_height > 0) {
+    DrawLegend(svg, legend, area.left, spec.height + kLegendGap, plot_width);
+  }
+  return svg.Finish();
+}
+
+void DecimateMinMax(const std::vector<double>& x,
+                    const std::vector<double>& y,
+                    std::size_t max_points,
+                    std::vector<double>& x_out,
+                    std::vector<double>& y_out) {
+  x_out.clear();
+  y_out.clear();
+  const std::size_t n = std::min(x.size(), y.size());
+  if (n <= max_points || max_points < 2) {
+    x_out.assign(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(n));
+    y_out.assign(y.begin(), y.begin() + static_cast<std::ptrdiff_t>(n));
+    return;
+  }
+  const std::size_t buckets = max_points / 2;
+  x_out.reserve(2 * buckets);
+  y_out.reserve(2 * buckets);
+  for (std::size_t b = 0; b < buckets; ++b) {
+    const std::size_t begin = b * n / buckets;
+    const std::size_t end = (b + 1) * n / buckets;
+    if (begin >= end) continue;
+    std::size_t lo = begin;
+    std::size_t hi = begin;
+    for (std::size_t i = begin; i < end; ++i) {
+      if (y[i] < y[lo]) lo = i;
+      if (y[i] > y[hi]) hi = i;
+    }
+    const std::size_t first = std::min(lo, hi);
+    const std::size_t second = std::max(lo, hi);
+    x_out.push_back(x[first]);
+    y_out.push_back(y[first]);
+    if (second != first) {
+      x_out.push_back(x[second]);
+      y_out.push_back(y[second]);
+    }
+  }
+}
+
+}  // namespace mpcal::report

@@ -1,0 +1,50 @@
+#include "mpcal/report.h"
+
+#include <chrono>
+#include <ctime>
+
+#include <fmt/chrono.h>
+#include <fmt/format.h>
+
+#include "mpcal/atomic_file.h"
+#include "report/html.h"
+#include "report/sections.h"
+
+namespace mpcal {
+
+namespace {
+
+std::string NowUtc() {
+  const std::time_t now =
+      std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  return fmt::format("{:%Y-%m-%d %H:%M:%S} UTC", fmt::gmtime(now));
+}
+
+}  // namespace
+
+std::string RenderReport(const ReportInputs& inputs) {
+  using namespace report;
+  std::string html = PageBegin(inputs.title);
+  html +=
+      HeaderSection(inputs, inputs.generated_at.empty() ? NowUtc() : inputs.generated_at);
+  html += "<main>\n";
+  if (inputs.calibration) html += CalibrationSection(*inputs.calibration);
+  if (inputs.session) {
+    html += SessionSection(*inputs.session,
+                           inputs.calibration ? &*inputs.calibration : nullptr);
+  }
+  if (inputs.repeatability) html += RepeatabilitySection(*inputs.repeatability);
+  if (inputs.verification) html += VerificationSection(*inputs.verification);
+  if (!inputs.calibration && !inputs.session && !inputs.repeatability &&
+      !inputs.verification) {
+    html += Paragraph("Nothing to report: no input was given.", "note");
+  }
+  html += "</main>\n";
+  return html + PageEnd();
+}
+
+void WriteReport(const std::string& path, const ReportInputs& inputs) {
+  WriteFileAtomically(path, RenderReport(inputs));
+}
+
+}  // namespace mpcal

@@ -1,0 +1,357 @@
+// Reading the report's inputs: the verification JSON of `mpcal verify`,
+// trajectory CSVs, and the whole set of files behind a report.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fast_float/fast_float.h>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "mpcal/calibration_file.h"
+#include "mpcal/error.h"
+#include "mpcal/repeat.h"
+#include "mpcal/report.h"
+
+namespace mpcal {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr const char* kVerificationFormat = "mpcal.verification/1";
+
+// Walks a JSON document with messages that name the file and the field.
+class Reader {
+ public:
+  explicit Reader(std::string origin) : origin_(std::move(origin)) {}
+
+  json Parse(const std::string& text) const {
+    try {
+      return json::parse(text);
+    } catch (const json::parse_error& e) {
+      throw Error(fmt::format(
+          "{}: not valid JSON (byte {}): {}", origin_, e.byte, Short(e.what())));
+    }
+  }
+
+  void ExpectFormat(const json& doc,
+                    const std::string& expected,
+                    const char* producer) const {
+    if (!doc.is_object()) throw Fail("", "expected a JSON object");
+    const auto it = doc.find("format");
+    if (it == doc.end() || !it->is_string()) {
+      throw Error(fmt::format("{}: no \"format\" field; expected \"{}\" (written by {})",
+                              origin_,
+                              expected,
+                              producer));
+    }
+    const std::string format = it->get<std::string>();
+    const std::string family = expected.substr(0, expected.find('/'));
+    if (format != expected) {
+      throw Error(
+          fmt::format("{}: format \"{}\" is not \"{}\"{}",
+                      origin_,
+                      format,
+                      expected,
+                      format.rfind(family + "/", 0) == 0
+                          ? "; this version of mpcal reads only major version 1"
+                          : fmt::format(" (expected the output of {})", producer)));
+    }
+  }
+
+  const json& At(const json& obj, const std::string& path, const char* key) const {
+    if (!obj.is_object()) throw Fail(path, "expected an object");
+    const auto it = obj.find(key);
+    if (it == obj.end()) throw Fail(Join(path, key), "missing");
+    return *it;
+  }
+
+  double Number(const json& v, const std::string& path) const {
+    if (!v.is_number()) throw Fail(path, "expected a number");
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) throw Fail(path, "not a finite number");
+    return d;
+  }
+
+  std::optional<double> OptionalNumber(const json& obj,
+                                       const std::string& path,
+                                       const char* key) const {
+    const auto it = obj.find(key);
+    if (it == obj.end() || it->is_null()) return std::nullopt;
+    return Number(*it, Join(path, key));
+  }
+
+  Error Fail(const std::string& path, const std::string& what) const {
+    return Error(fmt::format(
+        "{}: field \"{}\": {}", origin_, path.empty() ? "(top)" : path, what));
+  }
+
+  static std::string Join(const std::string& path, const char* key) {
+    return path.empty() ? std::string(key) : path + "." + key;
+  }
+
+ private:
+  // nlohmann's messages start with "[json.exception.parse_error.101] ".
+  static std::string Short(const std::string& what) {
+    const auto p = what.find("] ");
+    return p == std::string::npos ? what : what.substr(p + 2);
+  }
+
+  std::string origin_;
+};
+
+VerificationSummary::Metrics ReadMetrics(const Reader& r,
+                                         const json& doc,
+                                         const char* key) {
+  const json& m = r.At(doc, "", key);
+  VerificationSummary::Metrics out;
+  out.start_end_distance_m = r.Number(r.At(m, key, "start_end_distance_m"),
+                                      std::string(key) + ".start_end_distance_m");
+  out.horizontal_rms_m = r.OptionalNumber(m, key, "horizontal_rms_m");
+  out.horizontal_max_m = r.OptionalNumber(m, key, "horizontal_max_m");
+  out.path_length_m = r.OptionalNumber(m, key, "path_length_m");
+  return out;
+}
+
+std::string ReadText(const std::string& path, const char* what) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw Error(fmt::format("{}: is a directory, expected {}", path, what));
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(fmt::format("{}: cannot open {} (does it exist?)", path, what));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw Error(fmt::format("{}: read error", path));
+  return ss.str();
+}
+
+std::vector<std::string> SplitCsv(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cell;
+  std::istringstream in(line);
+  while (std::getline(in, cell, ',')) {
+    while (!cell.empty() && (cell.back() == ' ' || cell.back() == '\r')) cell.pop_back();
+    const auto first = cell.find_first_not_of(' ');
+    out.push_back(first == std::string::npos ? std::string() : cell.substr(first));
+  }
+  return out;
+}
+
+std::string Lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace
+
+VerificationSummary ParseVerificationJson(const std::string& text,
+                                          const std::string& origin) {
+  const Reader r(origin);
+  const json doc = r.Parse(text);
+  r.ExpectFormat(doc, kVerificationFormat, "mpcal verify");
+  VerificationSummary out;
+  out.reference.start_end_distance_m =
+      r.Number(r.At(r.At(doc, "", "reference"), "reference", "start_end_distance_m"),
+               "reference.start_end_distance_m");
+  out.reference.path_length_m =
+      r.OptionalNumber(r.At(doc, "", "reference"), "reference", "path_length_m");
+  out.raw = ReadMetrics(r, doc, "raw");
+  if (doc.contains("corrected") && !doc["corrected"].is_null()) {
+    out.corrected = ReadMetrics(r, doc, "corrected");
+  }
+  // The rest is informative: shown as it is, never required.
+  for (const char* group : {"time_alignment", "integration"}) {
+    const auto g = doc.find(group);
+    if (g == doc.end() || !g->is_object()) continue;
+    for (const auto& [key, value] : g->items()) {
+      out.details.emplace_back(
+          fmt::format("{}.{}", group, key),
+          value.is_string() ? value.get<std::string>() : value.dump());
+    }
+  }
+  if (const auto w = doc.find("warnings"); w != doc.end() && w->is_array()) {
+    for (const json& line : *w) {
+      if (line.is_string()) out.warnings.push_back(line.get<std::string>());
+    }
+  }
+  // Trajectory files the result names, relative to the result's directory.
+  const auto it = doc.find("trajectories");
+  if (it != doc.end() && !it->is_null()) {
+    if (!it->is_object())
+      throw r.Fail("trajectories", "expected {\"reference\": path, ...}");
+    const std::filesystem::path base = std::filesystem::path(origin).parent_path();
+    for (const char* role : {"reference", "raw", "corrected"}) {
+      const auto f = it->find(role);
+      if (f == it->end() || f->is_null()) continue;
+      if (!f->is_string())
+        throw r.Fail(std::string("trajectories.") + role, "expected a path");
+      const std::filesystem::path p(f->get<std::string>());
+      out.trajectory_files.emplace_back(
+          role, p.is_absolute() ? p.string() : (base / p).string());
+    }
+  }
+  return out;
+}
+
+EastNorthPath ReadEastNorthCsv(const std::string& path) {
+  std::istringstream in(ReadText(path, "a trajectory CSV"));
+  std::string line;
+  std::size_t line_no = 0;
+  int t_col = -1;
+  int e_col = -1;
+  int n_col = -1;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.empty() || line[0] == '#' || line == "\r") continue;
+    const std::vector<std::string> cells = SplitCsv(line);
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      const std::string c = Lower(cells[i]);
+      const int idx = static_cast<int>(i);
+      if (c == "t" || c == "t_s" || c == "time" || c == "time_s") t_col = idx;
+      if (c == "e" || c == "e_m" || c == "east" || c == "east_m") e_col = idx;
+      if (c == "n" || c == "n_m" || c == "north" || c == "north_m") n_col = idx;
+    }
+    break;
+  }
+  if (t_col < 0 || e_col < 0 || n_col < 0) {
+    throw Error(fmt::format(
+        "{}:{}: expected a header naming the time (t, time_s), east (e, east_m) and "
+        "north (n, north_m) columns",
+        path,
+        line_no));
+  }
+  const std::size_t need = static_cast<std::size_t>(std::max({t_col, e_col, n_col})) + 1;
+  EastNorthPath out;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.empty() || line[0] == '#' || line == "\r") continue;
+    const std::vector<std::string> cells = SplitCsv(line);
+    if (cells.size() < need) {
+      throw Error(fmt::format(
+          "{}:{}: {} columns, expected at least {}", path, line_no, cells.size(), need));
+    }
+    double v[3];
+    const int cols[3] = {t_col, e_col, n_col};
+    for (int k = 0; k < 3; ++k) {
+      const std::string& c = cells[static_cast<std::size_t>(cols[k])];
+      const auto res = fast_float::from_chars(c.data(), c.data() + c.size(), v[k]);
+      if (res.ec != std::errc() || res.ptr != c.data() + c.size() ||
+          !std::isfinite(v[k])) {
+        throw Error(fmt::format("{}:{}: column {}: \"{}\" is not a finite number",
+                                path,
+                                line_no,
+                                cols[k] + 1,
+                                c));
+      }
+    }
+    out.time_s.push_back(v[0]);
+    out.east_m.push_back(v[1]);
+    out.north_m.push_back(v[2]);
+  }
+  if (out.time_s.empty()) throw Error(fmt::format("{}: no data rows", path));
+  return out;
+}
+
+VerificationSummary SummarizeVerification(const VerifyResult& r) {
+  VerificationSummary out;
+  out.reference.start_end_distance_m = r.reference.start_end_distance_m;
+  out.reference.path_length_m = r.reference.path_length_m;
+  auto metrics = [](const PathMetrics& m) {
+    return VerificationSummary::Metrics{
+        m.start_end_distance_m, m.horizontal_rms_m, m.horizontal_max_m, m.path_length_m};
+  };
+  auto path = [](const TimedPath& p) {
+    EastNorthPath en;
+    en.time_s = p.time_s;
+    for (const Eigen::Vector3d& x : p.position_m) {
+      en.east_m.push_back(x.x());
+      en.north_m.push_back(x.y());
+    }
+    return en;
+  };
+  out.raw = metrics(r.raw);
+  if (r.corrected) out.corrected = metrics(*r.corrected);
+  if (!r.reference_path.empty()) out.reference_path = path(r.reference_path);
+  if (!r.raw_path.empty()) out.raw_path = path(r.raw_path);
+  if (r.corrected_path && !r.corrected_path->empty()) {
+    out.corrected_path = path(*r.corrected_path);
+  }
+  out.details = {
+      {"time_alignment.offset_s", fmt::format("{:.3f}", r.time.offset_s)},
+      {"integration.mount", r.mount == MountMode::kZUp ? "z-up" : "level"},
+      {"integration.gravity_mps2", fmt::format("{:.5f}", r.gravity_mps2)},
+      {"integration.gyroscope", r.gyro_used ? "true" : "false"},
+      {"integration.initial_rest_s", fmt::format("{:.1f}", r.initial_rest_s)},
+      {"integration.stops", std::to_string(r.stops)},
+  };
+  out.warnings = r.warnings;
+  return out;
+}
+
+std::string ReportFiles::Validate() const {
+  if (calibration.empty() && session.empty() && repeatability.empty() &&
+      verification.empty()) {
+    return "no input: give at least one of calibration, session, repeatability, "
+           "verification";
+  }
+  if (!verification_trajectories.empty() && verification.empty()) {
+    return "verification_trajectories needs verification";
+  }
+  if (const std::string e = log.Validate(); !e.empty()) return "log." + e;
+  if (const std::string e = detect.Validate(); !e.empty()) return "detect." + e;
+  return "";
+}
+
+ReportInputs LoadReportInputs(const ReportFiles& files) {
+  if (const std::string e = files.Validate(); !e.empty()) {
+    throw Error("report inputs: " + e);
+  }
+  ReportInputs in;
+  if (!files.calibration.empty()) {
+    in.calibration = ReadCalibrationFile(files.calibration);
+    in.input_files.emplace_back("Calibration file", files.calibration);
+  }
+  if (!files.session.empty()) {
+    ReportSession s;
+    s.recording = ReadLog(files.session, files.log);
+    s.detection = DetectStatic(s.recording, files.detect);
+    in.session = std::move(s);
+    in.input_files.emplace_back("Session log", files.session);
+  }
+  if (!files.repeatability.empty()) {
+    in.repeatability = RepeatabilityFromJson(
+        ReadText(files.repeatability, "a repeatability file"), files.repeatability);
+    in.input_files.emplace_back("Repeatability table", files.repeatability);
+  }
+  if (!files.verification.empty()) {
+    VerificationSummary v = ParseVerificationJson(
+        ReadText(files.verification, "a verification result"), files.verification);
+    in.input_files.emplace_back("Verification result", files.verification);
+    std::vector<std::pair<std::string, std::string>> trajectories = v.trajectory_files;
+    if (!files.verification_trajectories.empty()) {
+      trajectories.clear();
+      for (const char* role : {"reference", "raw", "corrected"}) {
+        const std::string p = files.verification_trajectories + "-" + role + ".csv";
+        // The corrected path exists only for a verification with a calibration.
+        if (std::string(role) == "corrected" && !std::filesystem::exists(p)) continue;
+        trajectories.emplace_back(role, p);
+      }
+    }
+    for (const auto& [role, p] : trajectories) {
+      EastNorthPath path = ReadEastNorthCsv(p);
+      if (role == "reference") v.reference_path = std::move(path);
+      if (role == "raw") v.raw_path = std::move(path);
+      if (role == "corrected") v.corrected_path = std::move(path);
+      in.input_files.emplace_back("Trajectory (" + role + ")", p);
+    }
+    in.verification = std::move(v);
+  }
+  return in;
+}
+
+}  // namespace mpcal

@@ -1,0 +1,32 @@
+// The sections of the report, each a fragment of HTML (<section>…</section>)
+// made from one input. report.cc puts together those whose input is given.
+#pragma once
+
+#include <string>
+
+#include "mpcal/calibration.h"
+#include "mpcal/report.h"
+
+namespace mpcal::report {
+
+/// Title, date, versions, input files and options (for reproduction), and
+/// links to the sections present.
+std::string HeaderSection(const ReportInputs& inputs, const std::string& generated_at);
+
+/// Parameters ±1σ, fit statistics, residuals per position, sphere coverage,
+/// cross-validation and warnings.
+std::string CalibrationSection(const Calibration& calibration);
+
+/// The recording against time with its static intervals shaded. With a
+/// calibration whose positions lie in the recording, those are shaded and
+/// numbered as in the calibration section.
+std::string SessionSection(const ReportSession& session, const Calibration* calibration);
+
+/// The trials table and the spread of each parameter against its 1σ.
+std::string RepeatabilitySection(const RepeatabilityResult& repeatability);
+
+/// Start-to-end distances and the paths in east-north metres; error against
+/// time when the paths are given.
+std::string VerificationSection(const VerificationSummary& verification);
+
+}  // namespace mpcal::report
