@@ -1,7 +1,6 @@
 // `mpcal apply CALIB.json INPUT -o OUTPUT`: corrects every accelerometer row
 // of a log with a calibration file, keeping everything else as it is.
 #include <cstdio>
-#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -77,12 +76,12 @@ void AddApplyCommand(CLI::App& root) {
                   "Corrected log ('-': standard output); written whole or not at all")
       ->required();
   AddLogOptions(*cmd, flags->options.log);
-  const std::map<std::string, AccelUnits> out_units{{"mps2", AccelUnits::kMps2},
+  const std::vector<std::pair<std::string, AccelUnits>> out_units{{"mps2", AccelUnits::kMps2},
                                                     {"g", AccelUnits::kG}};
   cmd->add_option("--out-units", flags->out_units,
                   "Units of the corrected accelerometer columns: mps2 or g (default: the "
                   "log's units; m/s2 for a log in counts)")
-      ->transform(CLI::CheckedTransformer(out_units, CLI::ignore_case))
+      ->transform(OneOf(out_units))
       ->group("Output");
   cmd->footer(
       "Example:\n"

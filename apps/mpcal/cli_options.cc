@@ -1,7 +1,6 @@
 #include "cli_options.h"
 
 #include <cmath>
-#include <map>
 
 #include <fmt/format.h>
 
@@ -31,9 +30,9 @@ const CLI::Validator PositiveNumber = NumberAtLeast(false);
 const CLI::Validator NonNegativeNumber = NumberAtLeast(true);
 
 void AddLogOptions(CLI::App& app, LogOptions& options) {
-  const std::map<std::string, AccelUnits> units{
+  const std::vector<std::pair<std::string, AccelUnits>> units{
       {"mps2", AccelUnits::kMps2}, {"g", AccelUnits::kG}, {"counts", AccelUnits::kCounts}};
-  const std::map<std::string, TimeUnit> time_units{
+  const std::vector<std::pair<std::string, TimeUnit>> time_units{
       {"auto", TimeUnit::kAuto},          {"s", TimeUnit::kSeconds},
       {"ms", TimeUnit::kMilliseconds},    {"us", TimeUnit::kMicroseconds},
       {"ns", TimeUnit::kNanoseconds},     {"index", TimeUnit::kSampleIndex}};
@@ -44,13 +43,13 @@ void AddLogOptions(CLI::App& app, LogOptions& options) {
   app.add_option("--units", options.units,
                  "Accelerometer units in the log: mps2, g (9.80665 m/s2) or counts "
                  "(raw ADC; offset and scale found from the positions)")
-      ->transform(CLI::CheckedTransformer(units, CLI::ignore_case))
+      ->transform(OneOf(units))
       ->default_str("mps2")
       ->group("Input log");
   app.add_option("--time-unit", options.time_unit,
                  "Unit of the time column: s, ms, us, ns, index (sample number, "
                  "needs --rate) or auto (integers: detected from the spacing)")
-      ->transform(CLI::CheckedTransformer(time_units, CLI::ignore_case))
+      ->transform(OneOf(time_units))
       ->default_str("auto")
       ->group("Input log");
   app.add_option("--rate", options.rate_hz,
@@ -88,21 +87,21 @@ void AddGravityOptions(CLI::App& app, GravityFlags& flags) {
 }
 
 void AddCalibrateOptions(CLI::App& app, CalibrateOptions& options) {
-  const std::map<std::string, ModelKind> models{
+  const std::vector<std::pair<std::string, ModelKind>> models{
       {"shin-el-sheimy-9", ModelKind::kShinElSheimy9},
       {"bias-scale-6", ModelKind::kBiasScale6}};
-  const std::map<std::string, RobustLoss> losses{
+  const std::vector<std::pair<std::string, RobustLoss>> losses{
       {"none", RobustLoss::kNone}, {"huber", RobustLoss::kHuber},
       {"cauchy", RobustLoss::kCauchy}};
   app.add_option("--model", options.solve.model,
                  "Error model: shin-el-sheimy-9 (bias, scale, 3 non-orthogonality "
                  "angles; >= 10 positions) or bias-scale-6 (six-position protocol)")
-      ->transform(CLI::CheckedTransformer(models, CLI::ignore_case))
+      ->transform(OneOf(models))
       ->default_str("shin-el-sheimy-9")
       ->group("Estimation");
   app.add_option("--robust", options.solve.robust,
                  "Robust loss on the position residuals: none, huber or cauchy")
-      ->transform(CLI::CheckedTransformer(losses, CLI::ignore_case))
+      ->transform(OneOf(losses))
       ->default_str("none")
       ->group("Estimation");
   app.add_option("--window", options.detect.window_s,

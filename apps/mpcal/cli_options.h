@@ -4,8 +4,12 @@
 
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "mpcal/calibrate.h"
 #include "mpcal/log_reader.h"
@@ -35,6 +39,31 @@ void AddCalibrateOptions(CLI::App& app, CalibrateOptions& options);
 /// positive number, got -1").
 extern const CLI::Validator PositiveNumber;
 extern const CLI::Validator NonNegativeNumber;
+
+/// A transform from names (any case) to values: an enum, or the name itself
+/// for a string option. An unknown name gets "'tukey' is not one of: none,
+/// huber, cauchy"; CLI11's own CheckedTransformer prints its internal
+/// mapping of names to numbers instead.
+template <typename Value>
+CLI::Validator OneOf(std::vector<std::pair<std::string, Value>> choices) {
+  std::string names;
+  for (const auto& choice : choices) names += (names.empty() ? "" : ", ") + choice.first;
+  return CLI::Validator(
+      [choices, names](std::string& text) -> std::string {
+        const std::string key = CLI::detail::to_lower(text);
+        for (const auto& [name, value] : choices) {
+          if (name != key) continue;
+          if constexpr (std::is_enum_v<Value>) {
+            text = std::to_string(static_cast<std::underlying_type_t<Value>>(value));
+          } else {
+            text = value;
+          }
+          return "";
+        }
+        return fmt::format("'{}' is not one of: {}", text, names);
+      },
+      "{" + names + "}");
+}
 
 /// Throws mpcal::Error naming the option when `problem` is not empty.
 void ThrowIfInvalid(const std::string& problem, const std::string& what);

@@ -313,7 +313,7 @@ void AddSimulateStaticCommand(CLI::App& simulate) {
                   f->units,
                   "Units written: mps2, g (9.80665 m/s2) or counts (integers: "
                   "offset + reading·counts-per-mps2)")
-      ->transform(CLI::IsMember({"mps2", "g", "counts"}, CLI::ignore_case))
+      ->transform(OneOf<std::string>({{"mps2", "mps2"}, {"g", "g"}, {"counts", "counts"}}))
       ->capture_default_str()
       ->group("Sensor");
   app->add_option(

@@ -2,7 +2,6 @@
 // the paper's field verification (METHOD.md §5): integrate a walk raw and
 // corrected and compare both with a GNSS reference.
 #include <cstdio>
-#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -176,7 +175,7 @@ void AddVerifyCommand(CLI::App& root) {
       f->trajectory_prefix,
       "Also write PREFIX-reference.csv, PREFIX-raw.csv and PREFIX-corrected.csv "
       "(t_s,e_m,n_m,u_m on the reference's clock and frame) for plotting");
-  const std::map<std::string, MountMode> mounts{{"level", MountMode::kLevel},
+  const std::vector<std::pair<std::string, MountMode>> mounts{{"level", MountMode::kLevel},
                                                 {"z-up", MountMode::kZUp}};
   cmd->add_option(
          "--mount",
@@ -184,7 +183,7 @@ void AddVerifyCommand(CLI::App& root) {
          "Initial attitude: level (from the initial rest; absorbs a constant bias "
          "while the sensor does not rotate) or z-up (the sensor's z axis along an "
          "upright pole, the paper's setting)")
-      ->transform(CLI::CheckedTransformer(mounts, CLI::ignore_case))
+      ->transform(OneOf(mounts))
       ->default_str("level")
       ->group("Integration");
   cmd->add_flag("--no-gyro",
@@ -210,7 +209,7 @@ void AddVerifyCommand(CLI::App& root) {
       ->capture_default_str()
       ->check(PositiveNumber)
       ->group("Integration");
-  const std::map<std::string, TimeAlignMode> aligns{
+  const std::vector<std::pair<std::string, TimeAlignMode>> aligns{
       {"auto", TimeAlignMode::kAuto},
       {"common", TimeAlignMode::kCommonClock},
       {"offset", TimeAlignMode::kOffset},
@@ -220,21 +219,21 @@ void AddVerifyCommand(CLI::App& root) {
          f->options.time_align,
          "Clocks: common (one clock), offset (--time-offset), motion (from the start "
          "of motion in both) or auto (common when the spans overlap, else motion)")
-      ->transform(CLI::CheckedTransformer(aligns, CLI::ignore_case))
+      ->transform(OneOf(aligns))
       ->default_str("auto")
       ->group("Time");
   cmd->add_option("--time-offset",
                   f->time_offset_s,
                   "t_reference = t_imu + SECONDS (e.g. 18 for a UTC log against GPST)")
       ->group("Time");
-  const std::map<std::string, GnssFormat> formats{{"auto", GnssFormat::kAuto},
+  const std::vector<std::pair<std::string, GnssFormat>> formats{{"auto", GnssFormat::kAuto},
                                                   {"pos", GnssFormat::kRtklibPos},
                                                   {"nmea", GnssFormat::kNmea},
                                                   {"csv", GnssFormat::kCsv}};
   cmd->add_option("--gnss-format",
                   f->gnss_options.format,
                   "Format of the reference: auto, pos, nmea or csv")
-      ->transform(CLI::CheckedTransformer(formats, CLI::ignore_case))
+      ->transform(OneOf(formats))
       ->default_str("auto")
       ->group("Reference");
   cmd->add_option(

@@ -48,6 +48,16 @@ struct PlotArea {
   double bottom() const { return top + height; }
 };
 
+/// Room around a plot's area (user units): tick labels and the rotated y
+/// title on the left, the x title below, then a gap before the legend.
+struct PlotMargins {
+  double left = 74.0;
+  double right = 18.0;
+  double top = 14.0;
+  double bottom = 46.0;
+  double legend_gap = 8.0;
+};
+
 /// Axis titles with their units, e.g. "time (s)".
 struct AxisLabels {
   std::string x;

@@ -10,12 +10,8 @@ namespace mpcal::report {
 
 namespace {
 
-// Wider left margin: the rows are labelled with parameter names.
-constexpr double kMarginLeft = 150.0;
-constexpr double kMarginRight = 18.0;
-constexpr double kMarginTop = 10.0;
-constexpr double kMarginBottom = 46.0;
-constexpr double kLegendGap = 8.0;
+// Wider on the left: the rows are labelled with parameter names.
+constexpr PlotMargins kMargins{.left = 150.0, .top = 10.0};
 
 }  // namespace
 
@@ -27,14 +23,14 @@ std::string DotPlot(const DotPlotSpec& spec) {
   }
   if (!spec.band_legend.empty())
     legend.push_back({spec.band_legend, {}, true, "band", false});
-  const double plot_width = spec.width - kMarginLeft - kMarginRight;
+  const double plot_width = spec.width - kMargins.left - kMargins.right;
   const double legend_height = LegendHeight(legend, plot_width);
   const double plot_height =
       spec.row_height * static_cast<double>(std::max<std::size_t>(spec.rows.size(), 1));
-  const double height = kMarginTop + plot_height + kMarginBottom;
-  const PlotArea area{kMarginLeft, kMarginTop, plot_width, plot_height};
+  const double height = kMargins.top + plot_height + kMargins.bottom;
+  const PlotArea area{kMargins.left, kMargins.top, plot_width, plot_height};
   Svg svg(spec.width,
-          height + (legend_height > 0 ? legend_height + kLegendGap : 0),
+          height + (legend_height > 0 ? legend_height + kMargins.legend_gap : 0),
           spec.aria_label);
 
   std::vector<double> xs;
@@ -119,7 +115,7 @@ std::string DotPlot(const DotPlotSpec& spec) {
     svg.CloseGroup();
   }
   if (legend_height > 0)
-    DrawLegend(svg, legend, area.left, height + kLegendGap, plot_width);
+    DrawLegend(svg, legend, area.left, height + kMargins.legend_gap, plot_width);
   return svg.Finish();
 }
 

@@ -7,12 +7,7 @@ namespace mpcal::report {
 
 namespace {
 
-// Room for tick labels and rotated y title on the left, x title below.
-constexpr double kMarginLeft = 74.0;
-constexpr double kMarginRight = 18.0;
-constexpr double kMarginTop = 14.0;
-constexpr double kMarginBottom = 46.0;
-constexpr double kLegendGap = 8.0;
+constexpr PlotMargins kMargins;
 
 // Ticks at `step` strictly inside a fixed range (equal-scale plots cannot
 // extend their range to the next round number).
@@ -41,13 +36,13 @@ std::string LinePlot(const LinePlotSpec& spec) {
     legend.push_back({a.label, a.style, false, "", false});
   }
   legend.insert(legend.end(), spec.extra_legend.begin(), spec.extra_legend.end());
-  const double plot_width = spec.width - kMarginLeft - kMarginRight;
+  const double plot_width = spec.width - kMargins.left - kMargins.right;
   const double legend_height = LegendHeight(legend, plot_width);
 
   PlotArea area{
-      kMarginLeft, kMarginTop, plot_width, spec.height - kMarginTop - kMarginBottom};
+      kMargins.left, kMargins.top, plot_width, spec.height - kMargins.top - kMargins.bottom};
   Svg svg(spec.width,
-          spec.height + (legend_height > 0 ? legend_height + kLegendGap : 0),
+          spec.height + (legend_height > 0 ? legend_height + kMargins.legend_gap : 0),
           spec.aria_label);
 
   std::vector<double> xs;
@@ -137,7 +132,7 @@ std::string LinePlot(const LinePlotSpec& spec) {
     svg.CloseGroup();
   }
   if (legend_height > 0) {
-    DrawLegend(svg, legend, area.left, spec.height + kLegendGap, plot_width);
+    DrawLegend(svg, legend, area.left, spec.height + kMargins.legend_gap, plot_width);
   }
   return svg.Finish();
 }

@@ -1,8 +1,6 @@
 // Repeatability of simulated sessions calibrated end to end: three power-ups of
 // each preset (SimulateTrials), each calibrated with CalibrateRecording.
-#include <array>
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -21,7 +19,7 @@ constexpr double kArithmetic = 1e-12;  // relative, a few double roundings
 
 // The verdicts below are taken at 0.1 % rather than the default 1 %: a 1 %
 // test flags a parameter that did not change in about 1 % of cases by design
-// (the Monte Carlo at the end measures the rate), and each preset has six or
+// (make bench measures the rate: bench/false_alarm_bench.cc), and each preset has six or
 // more such parameters, so at 1 % a fixed seed would fail by chance for about
 // one preset in twenty. The changes the tests plant are a hundred σ or more: 0.1 %
 // does not weaken what they check.
@@ -105,44 +103,6 @@ TEST_P(RepeatabilitySimulated, FlagsOnlyTheBiasOfTheSessionWhoseTurnOnBiasMoved)
     EXPECT_EQ(*row.changed, p == 2)
         << "chi2 " << row.chi2.value_or(-1.0) << " p " << row.p_value.value_or(-1.0);
   }
-}
-
-// The verdict's false-alarm rate: with the bias held fixed across power-ups,
-// a parameter should be flagged in about `significance` of the sets, if each
-// calibration's 1σ is honest. Slow (a minute): run with
-// --gtest_also_run_disabled_tests --gtest_filter='*FalseAlarm*'.
-TEST_P(RepeatabilitySimulated, DISABLED_FalseAlarmRateIsAboutTheSignificanceLevel) {
-  constexpr int kSets = 40;
-  SimulateStaticOptions options;
-  options.device = FindPreset(GetParam());
-  options.device.turn_on_bias_std_mps2.setZero();
-  std::array<int, kNumModelParameters> flagged{};
-  for (int set = 0; set < kSets; ++set) {
-    options.seed = 1000 + static_cast<std::uint64_t>(set);
-    const RepeatabilityResult r =
-        AnalyzeRepeatability(CalibrateAll(SimulateTrials(options, kTrials)));
-    for (int p = 0; p < kNumModelParameters; ++p) {
-      flagged[static_cast<std::size_t>(p)] +=
-          r.parameters[static_cast<std::size_t>(p)].changed.value_or(false) ? 1 : 0;
-    }
-  }
-  int total = 0;
-  for (int p = 0; p < kNumModelParameters; ++p) {
-    std::printf("%s %-22s flagged %d of %d\n",
-                GetParam().c_str(),
-                std::string(kParameterNames[static_cast<std::size_t>(p)]).c_str(),
-                flagged[static_cast<std::size_t>(p)],
-                kSets);
-    total += flagged[static_cast<std::size_t>(p)];
-  }
-  const int tests = kSets * kNumModelParameters;
-  std::printf("%s: %d of %d parameter tests flagged (%.1f %%; 1 %% expected)\n",
-              GetParam().c_str(),
-              total,
-              tests,
-              100.0 * total / tests);
-  // Binomial(360, 0.01): mean 3.6, P(X > 12) < 1e-4.
-  EXPECT_LE(total, 12);
 }
 
 INSTANTIATE_TEST_SUITE_P(Presets,
