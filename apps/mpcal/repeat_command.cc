@@ -1,5 +1,6 @@
 // mpcal repeat: several sessions of one device (recordings or calibration
 // files) in, the paper's repeatability table and the verdict out.
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -84,6 +85,15 @@ Calibration CalibrateSession(const std::string& path, RepeatFlags& f) {
 }
 
 void Run(RepeatFlags& f) {
+  if (!f.json.empty() && !f.csv.empty()) {
+    std::error_code ec;
+    if (std::filesystem::weakly_canonical(f.json, ec) ==
+        std::filesystem::weakly_canonical(f.csv, ec)) {
+      throw Error(fmt::format(
+          "--json and --csv both name '{}': one would overwrite the other; give each its "
+          "own file", f.json));
+    }
+  }
   for (const std::string& out : {f.json, f.csv}) {
     if (out.empty()) continue;
     for (const std::string& in : f.inputs) RefuseOverwritingInput(in, out);

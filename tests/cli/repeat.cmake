@@ -47,3 +47,6 @@ mpcal_cli_test(repeat.not_a_calibration EXIT 1 MATCH "README\\.md:[0-9]+: "
 mpcal_cli_test(repeat.bad_significance EXIT 2 MATCH "significance"
   ARGS repeat ${_mtig} --significance 2)
 mpcal_cli_test(repeat.no_arguments EXIT 2 MATCH "SESSION_OR_CALIB" ARGS repeat)
+mpcal_cli_test(repeat.json_and_csv_same_file EXIT 1
+  MATCH "--json and --csv both name 'table': one would overwrite the other" ABSENT table
+  ARGS repeat ${_colibri} --json table --csv ./table)
