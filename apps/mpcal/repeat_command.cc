@@ -86,9 +86,10 @@ Calibration CalibrateSession(const std::string& path, RepeatFlags& f) {
 
 void Run(RepeatFlags& f) {
   if (!f.json.empty() && !f.csv.empty()) {
+    namespace fs = std::filesystem;
     std::error_code ec;
-    if (std::filesystem::weakly_canonical(f.json, ec) ==
-        std::filesystem::weakly_canonical(f.csv, ec)) {
+    if (fs::weakly_canonical(fs::absolute(f.json, ec), ec) ==
+        fs::weakly_canonical(fs::absolute(f.csv, ec), ec)) {
       throw Error(fmt::format(
           "--json and --csv both name '{}': one would overwrite the other; give each its "
           "own file", f.json));
