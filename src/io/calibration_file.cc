@@ -16,15 +16,16 @@
 
 #include "mpcal/atomic_file.h"
 #include "mpcal/error.h"
+#include "mpcal/json_reader.h"
 
 namespace mpcal {
 namespace {
 
 // Ordered, so that the file reads top-down as the README documents it:
 // format first, then model, gravity, units, parameters, fit, positions.
-using json = nlohmann::ordered_json;
+using json = JsonReader::json;
 
-constexpr std::string_view kFormatPrefix = "mpcal.accelerometer/";
+constexpr std::string_view kFormatFamily = "mpcal.accelerometer";
 constexpr int kMajorVersion = 1;
 // Earth's gravity is 9.76-9.84 m/s² anywhere on its surface; outside this
 // band the value is in the wrong units or corrupt.
@@ -60,154 +61,56 @@ void PutModel(json& j, const ErrorModel& m, const std::string& prefix) {
 
 // ----- reading -----
 
-// Walks the document with the path of each field for messages.
-class Reader {
- public:
-  explicit Reader(std::string origin) : origin_(std::move(origin)) {}
-
-  [[noreturn]] void Fail(const std::string& message) const {
-    throw Error(fmt::format("calibration file '{}': {}", origin_, message));
-  }
-
-  static std::string Join(const std::string& path, const std::string& key) {
-    return path.empty() ? key : path + "." + key;
-  }
-
-  static std::string TypeName(const json& j) {
-    if (j.is_number()) return "a number";
-    if (j.is_string()) return "a string";
-    if (j.is_boolean()) return "true/false";
-    if (j.is_null()) return "null";
-    if (j.is_array()) return "an array";
-    return "an object";
-  }
-
-  const json& Field(const json& object, const std::string& path, const std::string& key) const {
-    const auto it = object.find(key);
-    if (it == object.end()) Fail(fmt::format("missing field '{}'", Join(path, key)));
-    return *it;
-  }
-
-  const json& Object(const json& object, const std::string& path, const std::string& key) const {
-    const json& j = Field(object, path, key);
-    if (!j.is_object()) {
-      Fail(fmt::format("field '{}' must be an object, found {}", Join(path, key), TypeName(j)));
-    }
-    return j;
-  }
-
-  double Number(const json& object, const std::string& path, const std::string& key) const {
-    return NumberValue(Field(object, path, key), Join(path, key));
-  }
-
-  double NumberValue(const json& j, const std::string& field) const {
-    // JSON has no NaN or infinity: nlohmann writes them as null.
-    if (j.is_null()) Fail(fmt::format("field '{}' is null (a non-finite value?)", field));
-    if (!j.is_number()) {
-      Fail(fmt::format("field '{}' must be a number, found {}", field, TypeName(j)));
-    }
-    const double v = j.get<double>();
-    if (!std::isfinite(v)) Fail(fmt::format("field '{}' is not finite", field));
-    return v;
-  }
-
-  std::optional<double> OptionalNumber(const json& object, const std::string& path,
-                                       const std::string& key) const {
-    if (!object.contains(key)) return std::nullopt;
-    return Number(object, path, key);
-  }
-
-  // `max` defaults to what an int holds: most integer fields are ints, and a
-  // larger value must not wrap around to a negative one (found by fuzzing).
-  long long Integer(const json& object, const std::string& path, const std::string& key,
-                    long long min,
-                    long long max = std::numeric_limits<int>::max()) const {
-    const json& j = Field(object, path, key);
-    if (!j.is_number_integer()) {
-      Fail(fmt::format("field '{}' must be an integer, found {}", Join(path, key),
-                       j.is_number() ? "a fractional number" : TypeName(j)));
-    }
-    if (j.is_number_unsigned() &&
-        j.get<unsigned long long>() > static_cast<unsigned long long>(max)) {
-      Fail(fmt::format("field '{}' must be at most {}, found {}", Join(path, key), max,
-                       j.get<unsigned long long>()));
-    }
-    const long long v = j.get<long long>();
-    if (v < min) Fail(fmt::format("field '{}' must be at least {}, found {}", Join(path, key), min, v));
-    if (v > max) Fail(fmt::format("field '{}' must be at most {}, found {}", Join(path, key), max, v));
-    return v;
-  }
-
-  bool Bool(const json& object, const std::string& path, const std::string& key) const {
-    const json& j = Field(object, path, key);
-    if (!j.is_boolean()) {
-      Fail(fmt::format("field '{}' must be true or false, found {}", Join(path, key),
-                       TypeName(j)));
-    }
-    return j.get<bool>();
-  }
-
-  std::string String(const json& object, const std::string& path, const std::string& key) const {
-    const json& j = Field(object, path, key);
-    if (!j.is_string()) {
-      Fail(fmt::format("field '{}' must be a string, found {}", Join(path, key), TypeName(j)));
-    }
-    return j.get<std::string>();
-  }
-
-  Eigen::Vector3d Vector(const json& object, const std::string& path, const std::string& key) const {
-    const json& j = Field(object, path, key);
-    const std::string field = Join(path, key);
-    if (!j.is_array() || j.size() != 3) {
-      Fail(fmt::format("field '{}' must be an array of 3 numbers (x, y, z), found {}", field,
-                       j.is_array() ? fmt::format("{} elements", j.size()) : TypeName(j)));
-    }
-    Eigen::Vector3d v;
-    for (int i = 0; i < 3; ++i) v[i] = NumberValue(j[i], fmt::format("{}[{}]", field, i));
-    return v;
-  }
-
-  ErrorModel Model(const json& object, const std::string& path, bool is_std) const {
-    ErrorModel m;
-    m.bias_mps2 = Vector(object, path, "bias_mps2");
-    m.scale_factor_error = Vector(object, path, "scale_factor_error");
-    const json& angles = Object(object, path, "non_orthogonality_rad");
-    const std::string apath = Join(path, "non_orthogonality_rad");
-    m.theta_yz_rad = Number(angles, apath, "yz");
-    m.theta_zx_rad = Number(angles, apath, "zx");
-    m.theta_zy_rad = Number(angles, apath, "zy");
-    if (is_std) {
-      const auto v = ToVector(m);
-      for (int i = 0; i < kNumModelParameters; ++i) {
-        if (v[i] < 0.0) {
-          Fail(fmt::format("'{}' has a negative standard deviation ({} = {})", path,
-                           kParameterNames[i], v[i]));
-        }
-      }
-    } else {
-      for (int i = 0; i < 3; ++i) {
-        if (!(m.scale_factor_error[i] > -0.5 && m.scale_factor_error[i] < 0.5)) {
-          Fail(fmt::format("'{}scale_factor_error[{}]' = {} is outside (-0.5, 0.5): the axis "
-                           "would read {:.3g} times the true value",
-                           path.empty() ? "" : path + ".", i, m.scale_factor_error[i],
-                           1.0 + m.scale_factor_error[i]));
-        }
-      }
-      for (auto [name, v] : {std::pair{"yz", m.theta_yz_rad}, std::pair{"zx", m.theta_zx_rad},
-                             std::pair{"zy", m.theta_zy_rad}}) {
-        if (std::abs(v) >= std::numbers::pi / 4) {
-          Fail(fmt::format("'non_orthogonality_rad.{}' = {} rad is not a small angle "
-                           "(|angle| must be below pi/4)",
-                           name, v));
-        }
+// The parameters (or, with `is_std`, their 1σ) of `object`, checked for what
+// a calibration can hold.
+ErrorModel ReadModel(const JsonReader& r,
+                     const json& object,
+                     const std::string& path,
+                     bool is_std) {
+  ErrorModel m;
+  m.bias_mps2 = r.Vector(object, path, "bias_mps2");
+  m.scale_factor_error = r.Vector(object, path, "scale_factor_error");
+  const json& angles = r.Object(object, path, "non_orthogonality_rad");
+  const std::string apath = JsonReader::Join(path, "non_orthogonality_rad");
+  m.theta_yz_rad = r.Number(angles, apath, "yz");
+  m.theta_zx_rad = r.Number(angles, apath, "zx");
+  m.theta_zy_rad = r.Number(angles, apath, "zy");
+  if (is_std) {
+    const auto v = ToVector(m);
+    for (int i = 0; i < kNumModelParameters; ++i) {
+      if (v[i] < 0.0) {
+        r.Fail(fmt::format("'{}' has a negative standard deviation ({} = {})",
+                           path,
+                           kParameterNames[i],
+                           v[i]));
       }
     }
-    return m;
+  } else {
+    for (int i = 0; i < 3; ++i) {
+      if (!(m.scale_factor_error[i] > -0.5 && m.scale_factor_error[i] < 0.5)) {
+        r.Fail(fmt::format(
+            "'{}scale_factor_error[{}]' = {} is outside (-0.5, 0.5): the axis "
+            "would read {:.3g} times the true value",
+            path.empty() ? "" : path + ".",
+            i,
+            m.scale_factor_error[i],
+            1.0 + m.scale_factor_error[i]));
+      }
+    }
+    for (auto [name, v] : {std::pair{"yz", m.theta_yz_rad},
+                           std::pair{"zx", m.theta_zx_rad},
+                           std::pair{"zy", m.theta_zy_rad}}) {
+      if (std::abs(v) >= std::numbers::pi / 4) {
+        r.Fail(
+            fmt::format("'non_orthogonality_rad.{}' = {} rad is not a small angle "
+                        "(|angle| must be below pi/4)",
+                        name,
+                        v));
+      }
+    }
   }
-
- private:
-  std::string origin_;
-};
+  return m;
+}
 
 }  // namespace
 
@@ -274,46 +177,9 @@ std::string CalibrationToJson(const Calibration& c) {
 }
 
 Calibration CalibrationFromJson(const std::string& text, const std::string& origin) {
-  const Reader r(origin);
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {
-    std::string what = e.what();
-    // Drop nlohmann's "[json.exception.parse_error.101] " prefix; keep
-    // "parse error at line L, column C: ...".
-    const auto bracket = what.find("] ");
-    if (bracket != std::string::npos) what = what.substr(bracket + 2);
-    if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
-      r.Fail("the file is empty; expected a JSON calibration written by 'mpcal calibrate'");
-    }
-    r.Fail(fmt::format("not valid JSON: {}", what));
-  }
-  if (!j.is_object()) {
-    r.Fail(fmt::format("expected a JSON object with \"format\": \"{}\", found {}",
-                       kCalibrationFormat, Reader::TypeName(j)));
-  }
-  if (!j.contains("format")) {
-    r.Fail(fmt::format("no 'format' field: not an mpcal calibration file (expected \"format\": "
-                       "\"{}\")",
-                       kCalibrationFormat));
-  }
-  const std::string format = r.String(j, "", "format");
-  if (format.rfind(kFormatPrefix, 0) != 0) {
-    r.Fail(fmt::format("unknown format '{}'; expected '{}'", format, kCalibrationFormat));
-  }
-  {
-    const std::string version = format.substr(kFormatPrefix.size());
-    const std::string major = version.substr(0, version.find('.'));
-    const bool digits = !major.empty() && major.size() < 6 &&
-                        major.find_first_not_of("0123456789") == std::string::npos;
-    if (!digits) r.Fail(fmt::format("unknown format '{}'; expected '{}'", format, kCalibrationFormat));
-    if (std::stoi(major) != kMajorVersion) {
-      r.Fail(fmt::format("format '{}' is version {} of the calibration file; this mpcal reads "
-                         "version {} ('{}'): use the mpcal that wrote it, or a newer mpcal",
-                         format, major, kMajorVersion, kCalibrationFormat));
-    }
-  }
+  const JsonReader r(fmt::format("calibration file '{}'", origin), "mpcal calibrate");
+  const json j = r.Parse(text);
+  r.ExpectFormat(j, kFormatFamily, kMajorVersion);
 
   Calibration c;
   const std::string model = r.String(j, "", "model");
@@ -344,7 +210,7 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
     r.Fail(fmt::format("'input.mps2_per_unit' is {} but units '{}' mean {} m/s² per unit",
                        c.mps2_per_unit, units, *fixed));
   }
-  c.model = r.Model(j, "", false);
+  c.model = ReadModel(r, j, "", false);
   if (c.model_kind == ModelKind::kBiasScale6 &&
       (c.model.theta_yz_rad != 0.0 || c.model.theta_zx_rad != 0.0 ||
        c.model.theta_zy_rad != 0.0)) {
@@ -353,7 +219,7 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
   }
   if (j.contains("std")) {
     r.Object(j, "", "std");
-    c.std = r.Model(j["std"], "std", true);
+    c.std = ReadModel(r, j["std"], "std", true);
   }
   if (j.contains("fit")) {
     const json& f = r.Object(j, "", "fit");
@@ -374,12 +240,12 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
   if (j.contains("positions")) {
     const json& ps = j["positions"];
     if (!ps.is_array()) {
-      r.Fail(fmt::format("field 'positions' must be an array, found {}", Reader::TypeName(ps)));
+      r.Fail(fmt::format("field 'positions' must be an array, found {}", JsonReader::TypeName(ps)));
     }
     for (std::size_t i = 0; i < ps.size(); ++i) {
       const std::string at = fmt::format("positions[{}]", i);
       if (!ps[i].is_object()) {
-        r.Fail(fmt::format("'{}' must be an object, found {}", at, Reader::TypeName(ps[i])));
+        r.Fail(fmt::format("'{}' must be an object, found {}", at, JsonReader::TypeName(ps[i])));
       }
       const json& q = ps[i];
       PositionSummary p;
@@ -400,12 +266,12 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
     const json& w = j["warnings"];
     if (!w.is_array()) {
       r.Fail(fmt::format("field 'warnings' must be an array of strings, found {}",
-                         Reader::TypeName(w)));
+                         JsonReader::TypeName(w)));
     }
     for (std::size_t i = 0; i < w.size(); ++i) {
       if (!w[i].is_string()) {
         r.Fail(fmt::format("'warnings[{}]' must be a string, found {}", i,
-                           Reader::TypeName(w[i])));
+                           JsonReader::TypeName(w[i])));
       }
       c.warnings.push_back(w[i].get<std::string>());
     }

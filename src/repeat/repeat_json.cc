@@ -6,15 +6,16 @@
 #include <nlohmann/json.hpp>
 
 #include "mpcal/error.h"
+#include "mpcal/json_reader.h"
 #include "mpcal/repeat.h"
 
 namespace mpcal {
 namespace {
 
 // Ordered: the keys come out in the order.
-using json = nlohmann::ordered_json;
+using json = JsonReader::json;
 
-constexpr std::string_view kFormatPrefix = "mpcal.repeatability/";
+constexpr std::string_view kFormatFamily = "mpcal.repeatability";
 // The JSON groups of the packed parameters: name, first packed index, and
 // whether the group is a vector (x, y, z) or an object of scalar angles.
 constexpr std::array<std::string_view, 3> kAngleKeys = {"yz", "zx", "zy"};
@@ -55,100 +56,65 @@ json ScalarGroup(const ParameterRepeatability& p) {
               {"changed", ChangedJson(p)}};
 }
 
-// Reading: every accessor names the field's path in the message.
-class Reader {
- public:
-  explicit Reader(std::string origin) : origin_(std::move(origin)) {}
-
-  [[noreturn]] void Fail(const std::string& path, const std::string& what) const {
-    throw Error(
-        fmt::format("{}: {}: {} (is this a file written by 'mpcal repeat --json'?)",
-                    origin_,
-                    path,
-                    what));
+// true, false, or null where the table has no verdict.
+std::optional<bool> ReadChanged(const JsonReader& in,
+                                const json& value,
+                                const std::string& field) {
+  if (value.is_null()) return std::nullopt;
+  if (!value.is_boolean()) {
+    in.Fail(fmt::format("field '{}' must be true, false or null, found {}",
+                        field,
+                        JsonReader::TypeName(value)));
   }
+  return value.get<bool>();
+}
 
-  const json& Field(const json& object,
-                    const std::string& path,
-                    std::string_view key) const {
-    if (!object.is_object()) Fail(path, "expected an object");
-    const auto it = object.find(key);
-    if (it == object.end()) Fail(path, fmt::format("missing field \"{}\"", key));
-    return *it;
-  }
-
-  double Number(const json& value, const std::string& path) const {
-    if (!value.is_number()) Fail(path, "expected a number");
-    const double v = value.get<double>();
-    if (!std::isfinite(v)) Fail(path, "not a finite number");
-    return v;
-  }
-
-  const json& Array(const json& value, const std::string& path, std::size_t size) const {
-    if (!value.is_array()) Fail(path, "expected an array");
-    if (value.size() != size) {
-      Fail(path, fmt::format("expected {} entries, found {}", size, value.size()));
-    }
-    return value;
-  }
-
-  std::optional<bool> Changed(const json& value, const std::string& path) const {
-    if (value.is_null()) return std::nullopt;
-    if (!value.is_boolean()) Fail(path, "expected true, false or null");
-    return value.get<bool>();
-  }
-
- private:
-  std::string origin_;
-};
-
-void ReadVectorGroup(const Reader& in,
+void ReadVectorGroup(const JsonReader& in,
                      const json& group,
                      const std::string& path,
                      int trials,
                      int first,
                      RepeatabilityResult& r) {
-  const json& values = in.Array(in.Field(group, path, "values"),
-                                path + ".values",
-                                static_cast<std::size_t>(trials));
+  const json& values = in.ArrayValue(in.Field(group, path, "values"),
+                                     path + ".values",
+                                     static_cast<std::size_t>(trials));
   for (int t = 0; t < trials; ++t) {
     const std::string row_path = fmt::format("{}.values[{}]", path, t);
-    const json& row = in.Array(values[t], row_path, 3);
+    const json& row = in.ArrayValue(values[t], row_path, 3);
     for (int a = 0; a < 3; ++a) {
       r.parameters[first + a].values.push_back(
-          in.Number(row[a], fmt::format("{}[{}]", row_path, a)));
+          in.NumberValue(row[a], fmt::format("{}[{}]", row_path, a)));
     }
   }
   for (std::string_view key : {"mean", "std_population", "std_sample", "changed"}) {
     const std::string field_path = fmt::format("{}.{}", path, key);
-    const json& arr = in.Array(in.Field(group, path, key), field_path, 3);
+    const json& arr = in.ArrayValue(in.Field(group, path, key), field_path, 3);
     for (int a = 0; a < 3; ++a) {
       ParameterRepeatability& p = r.parameters[first + a];
       const std::string item = fmt::format("{}[{}]", field_path, a);
-      if (key == "mean") p.mean = in.Number(arr[a], item);
-      if (key == "std_population") p.std_population = in.Number(arr[a], item);
-      if (key == "std_sample") p.std_sample = in.Number(arr[a], item);
-      if (key == "changed") p.changed = in.Changed(arr[a], item);
+      if (key == "mean") p.mean = in.NumberValue(arr[a], item);
+      if (key == "std_population") p.std_population = in.NumberValue(arr[a], item);
+      if (key == "std_sample") p.std_sample = in.NumberValue(arr[a], item);
+      if (key == "changed") p.changed = ReadChanged(in, arr[a], item);
     }
   }
 }
 
-void ReadScalarGroup(const Reader& in,
+void ReadScalarGroup(const JsonReader& in,
                      const json& group,
                      const std::string& path,
                      int trials,
                      ParameterRepeatability& p) {
-  const json& values = in.Array(in.Field(group, path, "values"),
-                                path + ".values",
-                                static_cast<std::size_t>(trials));
+  const json& values = in.ArrayValue(in.Field(group, path, "values"),
+                                     path + ".values",
+                                     static_cast<std::size_t>(trials));
   for (int t = 0; t < trials; ++t) {
-    p.values.push_back(in.Number(values[t], fmt::format("{}.values[{}]", path, t)));
+    p.values.push_back(in.NumberValue(values[t], fmt::format("{}.values[{}]", path, t)));
   }
-  p.mean = in.Number(in.Field(group, path, "mean"), path + ".mean");
-  p.std_population =
-      in.Number(in.Field(group, path, "std_population"), path + ".std_population");
-  p.std_sample = in.Number(in.Field(group, path, "std_sample"), path + ".std_sample");
-  p.changed = in.Changed(in.Field(group, path, "changed"), path + ".changed");
+  p.mean = in.Number(group, path, "mean");
+  p.std_population = in.Number(group, path, "std_population");
+  p.std_sample = in.Number(group, path, "std_sample");
+  p.changed = ReadChanged(in, in.Field(group, path, "changed"), path + ".changed");
 }
 
 // CSV cells: shortest round-trip representation, empty when absent.
@@ -176,40 +142,14 @@ std::string RepeatabilityToJson(const RepeatabilityResult& result) {
 
 RepeatabilityResult RepeatabilityFromJson(const std::string& text,
                                           const std::string& origin) {
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::exception& e) {
-    // parse_error for bad syntax, out_of_range for a number beyond a double.
-    throw Error(fmt::format("{}: not valid JSON: {}", origin, e.what()));
-  }
-  const Reader in(origin);
-  const json& format = in.Field(doc, "(top level)", "format");
-  if (!format.is_string()) in.Fail("format", "expected a string");
-  const std::string tag = format.get<std::string>();
-  if (tag.rfind(kFormatPrefix, 0) != 0) {
-    in.Fail("format",
-            fmt::format("\"{}\" is not a repeatability table (expected \"{}\")",
-                        tag,
-                        kRepeatabilityFormat));
-  }
-  const std::string version = tag.substr(kFormatPrefix.size());
-  if (version != "1" && version.rfind("1.", 0) != 0) {
-    in.Fail("format",
-            fmt::format("version \"{}\" is not supported by this mpcal (it reads {})",
-                        version,
-                        kRepeatabilityFormat));
-  }
-  const json& trials_json = in.Field(doc, "(top level)", "trials");
-  if (!trials_json.is_number_integer() || trials_json.get<long long>() < 2 ||
-      trials_json.get<long long>() > 1000000) {
-    in.Fail("trials", "expected an integer of at least 2");
-  }
+  const JsonReader in(origin, "mpcal repeat --json");
+  const json doc = in.Parse(text);
+  in.ExpectFormat(doc, kFormatFamily, 1);
   RepeatabilityResult r;
-  r.trials = static_cast<int>(trials_json.get<long long>());
+  r.trials = static_cast<int>(in.Integer(doc, "", "trials", 2, 1000000));
   for (int t = 0; t < r.trials; ++t)
     r.trial_names.push_back(fmt::format("trial {}", t + 1));
-  const json& parameters = in.Field(doc, "(top level)", "parameters");
+  const json& parameters = in.Object(doc, "", "parameters");
   ReadVectorGroup(in,
                   in.Field(parameters, "parameters", "bias_mps2"),
                   "parameters.bias_mps2",

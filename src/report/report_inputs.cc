@@ -9,10 +9,10 @@
 
 #include <fast_float/fast_float.h>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "mpcal/calibration_file.h"
 #include "mpcal/error.h"
+#include "mpcal/json_reader.h"
 #include "mpcal/repeat.h"
 #include "mpcal/report.h"
 
@@ -20,97 +20,16 @@ namespace mpcal {
 
 namespace {
 
-using nlohmann::json;
+using json = JsonReader::json;
 
-constexpr const char* kVerificationFormat = "mpcal.verification/1";
+constexpr std::string_view kVerificationFamily = "mpcal.verification";
 
-// Walks a JSON document with messages that name the file and the field.
-class Reader {
- public:
-  explicit Reader(std::string origin) : origin_(std::move(origin)) {}
-
-  json Parse(const std::string& text) const {
-    try {
-      return json::parse(text);
-    } catch (const json::parse_error& e) {
-      throw Error(fmt::format(
-          "{}: not valid JSON (byte {}): {}", origin_, e.byte, Short(e.what())));
-    }
-  }
-
-  void ExpectFormat(const json& doc,
-                    const std::string& expected,
-                    const char* producer) const {
-    if (!doc.is_object()) throw Fail("", "expected a JSON object");
-    const auto it = doc.find("format");
-    if (it == doc.end() || !it->is_string()) {
-      throw Error(fmt::format("{}: no \"format\" field; expected \"{}\" (written by {})",
-                              origin_,
-                              expected,
-                              producer));
-    }
-    const std::string format = it->get<std::string>();
-    const std::string family = expected.substr(0, expected.find('/'));
-    if (format != expected) {
-      throw Error(
-          fmt::format("{}: format \"{}\" is not \"{}\"{}",
-                      origin_,
-                      format,
-                      expected,
-                      format.rfind(family + "/", 0) == 0
-                          ? "; this version of mpcal reads only major version 1"
-                          : fmt::format(" (expected the output of {})", producer)));
-    }
-  }
-
-  const json& At(const json& obj, const std::string& path, const char* key) const {
-    if (!obj.is_object()) throw Fail(path, "expected an object");
-    const auto it = obj.find(key);
-    if (it == obj.end()) throw Fail(Join(path, key), "missing");
-    return *it;
-  }
-
-  double Number(const json& v, const std::string& path) const {
-    if (!v.is_number()) throw Fail(path, "expected a number");
-    const double d = v.get<double>();
-    if (!std::isfinite(d)) throw Fail(path, "not a finite number");
-    return d;
-  }
-
-  std::optional<double> OptionalNumber(const json& obj,
-                                       const std::string& path,
-                                       const char* key) const {
-    const auto it = obj.find(key);
-    if (it == obj.end() || it->is_null()) return std::nullopt;
-    return Number(*it, Join(path, key));
-  }
-
-  Error Fail(const std::string& path, const std::string& what) const {
-    return Error(fmt::format(
-        "{}: field \"{}\": {}", origin_, path.empty() ? "(top)" : path, what));
-  }
-
-  static std::string Join(const std::string& path, const char* key) {
-    return path.empty() ? std::string(key) : path + "." + key;
-  }
-
- private:
-  // nlohmann's messages start with "[json.exception.parse_error.101] ".
-  static std::string Short(const std::string& what) {
-    const auto p = what.find("] ");
-    return p == std::string::npos ? what : what.substr(p + 2);
-  }
-
-  std::string origin_;
-};
-
-VerificationSummary::Metrics ReadMetrics(const Reader& r,
+VerificationSummary::Metrics ReadMetrics(const JsonReader& r,
                                          const json& doc,
                                          const char* key) {
-  const json& m = r.At(doc, "", key);
+  const json& m = r.Object(doc, "", key);
   VerificationSummary::Metrics out;
-  out.start_end_distance_m = r.Number(r.At(m, key, "start_end_distance_m"),
-                                      std::string(key) + ".start_end_distance_m");
+  out.start_end_distance_m = r.Number(m, key, "start_end_distance_m");
   out.horizontal_rms_m = r.OptionalNumber(m, key, "horizontal_rms_m");
   out.horizontal_max_m = r.OptionalNumber(m, key, "horizontal_max_m");
   out.path_length_m = r.OptionalNumber(m, key, "path_length_m");
@@ -151,19 +70,16 @@ std::string Lower(std::string s) {
 
 VerificationSummary ParseVerificationJson(const std::string& text,
                                           const std::string& origin) {
-  const Reader r(origin);
+  const JsonReader r(origin, "mpcal verify");
   const json doc = r.Parse(text);
-  r.ExpectFormat(doc, kVerificationFormat, "mpcal verify");
+  r.ExpectFormat(doc, kVerificationFamily, 1);
   VerificationSummary out;
+  const json& reference = r.Object(doc, "", "reference");
   out.reference.start_end_distance_m =
-      r.Number(r.At(r.At(doc, "", "reference"), "reference", "start_end_distance_m"),
-               "reference.start_end_distance_m");
-  out.reference.path_length_m =
-      r.OptionalNumber(r.At(doc, "", "reference"), "reference", "path_length_m");
+      r.Number(reference, "reference", "start_end_distance_m");
+  out.reference.path_length_m = r.OptionalNumber(reference, "reference", "path_length_m");
   out.raw = ReadMetrics(r, doc, "raw");
-  if (doc.contains("corrected") && !doc["corrected"].is_null()) {
-    out.corrected = ReadMetrics(r, doc, "corrected");
-  }
+  if (doc.contains("corrected")) out.corrected = ReadMetrics(r, doc, "corrected");
   // The rest is informative: shown as it is, never required.
   for (const char* group : {"time_alignment", "integration"}) {
     const auto g = doc.find(group);
@@ -180,17 +96,12 @@ VerificationSummary ParseVerificationJson(const std::string& text,
     }
   }
   // Trajectory files the result names, relative to the result's directory.
-  const auto it = doc.find("trajectories");
-  if (it != doc.end() && !it->is_null()) {
-    if (!it->is_object())
-      throw r.Fail("trajectories", "expected {\"reference\": path, ...}");
+  if (doc.contains("trajectories")) {
+    const json& files = r.Object(doc, "", "trajectories");
     const std::filesystem::path base = std::filesystem::path(origin).parent_path();
     for (const char* role : {"reference", "raw", "corrected"}) {
-      const auto f = it->find(role);
-      if (f == it->end() || f->is_null()) continue;
-      if (!f->is_string())
-        throw r.Fail(std::string("trajectories.") + role, "expected a path");
-      const std::filesystem::path p(f->get<std::string>());
+      if (!files.contains(role)) continue;
+      const std::filesystem::path p(r.String(files, "trajectories", role));
       out.trajectory_files.emplace_back(
           role, p.is_absolute() ? p.string() : (base / p).string());
     }

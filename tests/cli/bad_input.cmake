@@ -26,7 +26,7 @@ set(bad_logs
 set(bad_calibs
   missing      no/such/calib.json          "cannot read calibration file 'no/such/calib.json'"
   directory    ${BAD}                      "is a directory. give the JSON file"
-  empty        ${BAD}/empty.csv            "the file is empty. expected a JSON calibration"
+  empty        ${BAD}/empty.csv            "the file is empty. expected JSON written by 'mpcal calibrate'"
   prose        ${BAD}/prose.txt            "not valid JSON: parse error at line 1, column 1"
   binary       ${BAD}/binary.bin           "not valid JSON"
   malformed    ${BAD}/malformed.json       "not valid JSON: parse error at line 3"

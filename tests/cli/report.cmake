@@ -26,7 +26,7 @@ mpcal_cli_test(report.calibration_as_repeatability EXIT 1
   MATCH "calib\\.json.*mpcal\\.repeatability/1" ABSENT report.html
   ARGS report --repeat ${_rd}/calib.json -o report.html)
 mpcal_cli_test(report.repeatability_as_verification EXIT 1
-  MATCH "repeat\\.json: format \"mpcal\\.repeatability/1\" is not \"mpcal\\.verification/1\""
+  MATCH "repeat\\.json: format 'mpcal\\.repeatability/1' is not 'mpcal\\.verification/1'"
   ABSENT report.html ARGS report --verify ${_rd}/repeat.json -o report.html)
 mpcal_cli_test(report.calibration_as_session EXIT 1 MATCH "calib\\.json:2: .*accelerometer log"
   ABSENT report.html ARGS report --session ${_rd}/calib.json -o report.html)

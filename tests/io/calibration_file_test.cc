@@ -194,9 +194,11 @@ TEST(CalibrationFile, MalformedJsonGivesLineAndColumn) {
 TEST(CalibrationFile, FormatAndVersion) {
   nlohmann::json j = ValidJson();
   j.erase("format");
-  EXPECT_THAT(FromJsonError(j.dump()), HasSubstr("not an mpcal calibration file"));
+  EXPECT_THAT(FromJsonError(j.dump()),
+              HasSubstr("no 'format' field: not a file written by 'mpcal calibrate'"));
   j["format"] = "mpcal.gyroscope/1";
-  EXPECT_THAT(FromJsonError(j.dump()), HasSubstr("unknown format 'mpcal.gyroscope/1'"));
+  EXPECT_THAT(FromJsonError(j.dump()),
+              HasSubstr("format 'mpcal.gyroscope/1' is not 'mpcal.accelerometer/1'"));
   j["format"] = "mpcal.accelerometer/2";
   EXPECT_THAT(FromJsonError(j.dump()),
               AllOf(HasSubstr("version 2"), HasSubstr("this mpcal reads version 1")));

@@ -121,39 +121,40 @@ void ExpectReaderError(const std::string& text, const std::vector<std::string>& 
 }
 
 TEST(RepeatabilityJson, ReaderRejectsBadInputNamingTheField) {
-  ExpectReaderError("", {"not valid JSON"});
+  ExpectReaderError("", {"the file is empty"});
   ExpectReaderError("{\"format\": ", {"not valid JSON"});
-  ExpectReaderError("[1, 2]", {"expected an object"});
+  ExpectReaderError("[1, 2]", {"expected a JSON object", "found an array"});
   nlohmann::json j = nlohmann::json::parse(ValidJson());
 
   nlohmann::json bad = j;
   bad["format"] = "mpcal.accelerometer/1";
-  ExpectReaderError(bad.dump(), {"format", "not a repeatability table"});
+  ExpectReaderError(bad.dump(),
+                    {"format 'mpcal.accelerometer/1' is not 'mpcal.repeatability/1'"});
   bad = j;
   bad["format"] = "mpcal.repeatability/2";
-  ExpectReaderError(bad.dump(), {"version \"2\" is not supported"});
+  ExpectReaderError(bad.dump(), {"is version 2 of the format; this mpcal reads version 1"});
   bad = j;
   bad.erase("trials");
-  ExpectReaderError(bad.dump(), {"missing field \"trials\""});
+  ExpectReaderError(bad.dump(), {"missing field 'trials'"});
   bad = j;
   bad["trials"] = 1;
   ExpectReaderError(bad.dump(), {"trials", "at least 2"});
   bad = j;
   bad["trials"] = 4;
   ExpectReaderError(bad.dump(),
-                    {"parameters.bias_mps2.values", "expected 4 entries, found 3"});
+                    {"field 'parameters.bias_mps2.values' must be an array of 4 entries, found 3"});
   bad = j;
   bad["parameters"]["bias_mps2"]["values"][1][2] = "0.1";
   ExpectReaderError(bad.dump(),
-                    {"parameters.bias_mps2.values[1][2]", "expected a number"});
+                    {"field 'parameters.bias_mps2.values[1][2]' must be a number, found a string"});
   bad = j;
   bad["parameters"]["scale_factor_error"]["std_sample"] = {1.0, 2.0};
   ExpectReaderError(bad.dump(),
-                    {"parameters.scale_factor_error.std_sample", "expected 3 entries"});
+                    {"field 'parameters.scale_factor_error.std_sample' must be an array of 3 entries"});
   bad = j;
   bad["parameters"]["non_orthogonality_rad"].erase("zy");
   ExpectReaderError(bad.dump(),
-                    {"parameters.non_orthogonality_rad", "missing field \"zy\""});
+                    {"missing field 'parameters.non_orthogonality_rad.zy'"});
   bad = j;
   bad["parameters"]["non_orthogonality_rad"]["yz"]["changed"] = "yes";
   ExpectReaderError(

@@ -60,16 +60,17 @@ TEST(VerificationJson, RejectsOtherFormatsAndMissingFieldsByName) {
   EXPECT_THAT(ErrorOf([] {
                 ParseVerificationJson(R"({"format": "mpcal.accelerometer/1"})", "c.json");
               }),
-              HasSubstr("expected the output of mpcal verify"));
+              HasSubstr("c.json: format 'mpcal.accelerometer/1' is not 'mpcal.verification/1': "
+                        "not a file written by 'mpcal verify'"));
   EXPECT_THAT(ErrorOf([] {
                 ParseVerificationJson(R"({"format": "mpcal.verification/2"})", "r.json");
               }),
-              HasSubstr("only major version 1"));
+              HasSubstr("is version 2 of the format; this mpcal reads version 1"));
   EXPECT_THAT(ErrorOf([] { ParseVerificationJson("[1, 2]", "r.json"); }),
-              HasSubstr("r.json: field \"(top)\": expected a JSON object"));
+              HasSubstr("r.json: expected a JSON object with \"format\": \"mpcal.verification/1\""));
   EXPECT_THAT(
       ErrorOf([] { ParseVerificationJson(R"({"raw": {}})", "r.json"); }),
-      HasSubstr("r.json: no \"format\" field; expected \"mpcal.verification/1\""));
+      HasSubstr("r.json: no 'format' field: not a file written by 'mpcal verify'"));
   EXPECT_THAT(ErrorOf([] {
                 ParseVerificationJson(
                     R"({"format": "mpcal.verification/1",
@@ -77,12 +78,12 @@ TEST(VerificationJson, RejectsOtherFormatsAndMissingFieldsByName) {
                         "raw": {"start_end_distance_m": "far"}})",
                     "r.json");
               }),
-              HasSubstr("field \"raw.start_end_distance_m\": expected a number"));
+              HasSubstr("field 'raw.start_end_distance_m' must be a number, found a string"));
   EXPECT_THAT(ErrorOf([] {
                 ParseVerificationJson(
                     R"({"format": "mpcal.verification/1", "reference": {}})", "r.json");
               }),
-              HasSubstr("field \"reference.start_end_distance_m\": missing"));
+              HasSubstr("missing field 'reference.start_end_distance_m'"));
 }
 
 TEST(TrajectoryCsv, ReadsTheColumnsByName) {
