@@ -2,9 +2,12 @@
 // the paper's field verification (METHOD.md §5): integrate a walk raw and
 // corrected and compare both with a GNSS reference.
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -21,6 +24,18 @@
 
 namespace mpcal::cli {
 namespace {
+
+// `path` as the result file at `result` should name it: relative to the
+// result's folder (absolute when the result goes to standard output).
+std::string RelativeTo(const std::string& path, const std::string& result) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path absolute = fs::absolute(path, ec);
+  if (result == "-" || ec) return absolute.string();
+  const fs::path folder = fs::absolute(result, ec).parent_path();
+  const fs::path relative = fs::proximate(absolute, folder, ec);
+  return ec ? absolute.string() : relative.string();
+}
 
 struct VerifyFlags {
   std::string imu;
@@ -88,16 +103,19 @@ void RunVerify(CLI::App& cmd, VerifyFlags& f) {
   }
 
   const VerifyResult result = Verify(imu, reference, calibration, options);
-  WriteFileAtomically(f.output, VerificationToJson(result));
+  // The paths first, so that the result can name them for `mpcal report`.
+  std::vector<std::pair<std::string, std::string>> trajectories;
   if (!f.trajectory_prefix.empty()) {
-    WriteFileAtomically(f.trajectory_prefix + "-reference.csv",
-                        PathToCsv(result.reference_path, result.reference_quality));
-    WriteFileAtomically(f.trajectory_prefix + "-raw.csv", PathToCsv(result.raw_path));
-    if (result.corrected_path) {
-      WriteFileAtomically(f.trajectory_prefix + "-corrected.csv",
-                          PathToCsv(*result.corrected_path));
-    }
+    auto write = [&](const std::string& role, const std::string& csv) {
+      const std::string path = f.trajectory_prefix + "-" + role + ".csv";
+      WriteFileAtomically(path, csv);
+      trajectories.emplace_back(role, RelativeTo(path, f.output));
+    };
+    write("reference", PathToCsv(result.reference_path, result.reference_quality));
+    write("raw", PathToCsv(result.raw_path));
+    if (result.corrected_path) write("corrected", PathToCsv(*result.corrected_path));
   }
+  WriteFileAtomically(f.output, VerificationToJson(result, trajectories));
 
   for (const std::string& w : imu.warnings) fmt::print(stderr, "mpcal: warning: {}\n", w);
   for (const std::string& w : reference.warnings)

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "mpcal/calibration.h"
@@ -117,8 +118,13 @@ VerifyResult Verify(const Recording& imu,
 
 /// The result file: `"format": "mpcal.verification/1"`, with `reference`,
 /// `raw` and (with a calibration) `corrected`, plus `time_alignment` and
-/// `integration` details. Pretty-printed, newline-ended.
-std::string VerificationToJson(const VerifyResult& result);
+/// `integration` details, and `trajectories` when `trajectory_files` names
+/// the paths' CSVs (role "reference", "raw" or "corrected" → path, relative
+/// to the result's folder), so that `mpcal report` finds them.
+/// Pretty-printed, newline-ended.
+std::string VerificationToJson(
+    const VerifyResult& result,
+    const std::vector<std::pair<std::string, std::string>>& trajectory_files = {});
 
 /// CSV for plotting: `t_s,e_m,n_m,u_m` per point (reference: plus `q`).
 std::string PathToCsv(const TimedPath& path, const std::vector<int>& quality = {});

@@ -391,7 +391,9 @@ VerifyResult Verify(const Recording& imu,
   return result;
 }
 
-std::string VerificationToJson(const VerifyResult& r) {
+std::string VerificationToJson(
+    const VerifyResult& r,
+    const std::vector<std::pair<std::string, std::string>>& trajectory_files) {
   nlohmann::ordered_json j;
   j["format"] = "mpcal.verification/1";
   j["reference"] = {{"path_length_m", r.reference.path_length_m},
@@ -414,6 +416,11 @@ std::string VerificationToJson(const VerifyResult& r) {
       {"heading_rotation_deg", r.heading_rotation_rad * 180.0 / M_PI},
       {"reference_epochs", r.reference.epochs}};
   j["warnings"] = r.warnings;
+  if (!trajectory_files.empty()) {
+    nlohmann::ordered_json files;
+    for (const auto& [role, path] : trajectory_files) files[role] = path;
+    j["trajectories"] = files;
+  }
   return j.dump(2) + "\n";
 }
 

@@ -374,6 +374,12 @@ TEST(Verify, ResultJsonHasTheIssuesKeys) {
   EXPECT_DOUBLE_EQ(j["raw"]["horizontal_rms_m"].get<double>(), with.raw.horizontal_rms_m);
   const VerifyResult without = Verify(w.recording, ref, std::nullopt, {});
   EXPECT_FALSE(nlohmann::json::parse(VerificationToJson(without)).contains("corrected"));
+  EXPECT_FALSE(j.contains("trajectories"));
+  // The trajectory CSVs, when written, are named for `mpcal report`.
+  const nlohmann::json named = nlohmann::json::parse(
+      VerificationToJson(with, {{"reference", "w-reference.csv"}, {"raw", "w-raw.csv"}}));
+  EXPECT_EQ(named["trajectories"],
+            nlohmann::json({{"reference", "w-reference.csv"}, {"raw", "w-raw.csv"}}));
 }
 
 TEST(Verify, TrajectoryCsvHasAHeaderAndARowPerPoint) {
