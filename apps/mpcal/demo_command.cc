@@ -114,7 +114,7 @@ void Run(const DemoFlags& f) {
   report.session = ReportSession{session.recording, result.detection};
   report.repeatability = repeatability;
   report.verification = SummarizeVerification(verification);
-  report.input_files = {{"calibration", calib_path}, {"truth", truth_path}};
+  report.input_files = {{"Calibration file", calib_path}, {"Truth (simulated)", truth_path}};
   report.command_line = fmt::format("mpcal demo --preset {} --seed {} --output-dir {}",
                                     f.preset, f.seed, f.output_dir);
   WriteReport(report_path, report);
