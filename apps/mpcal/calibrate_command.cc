@@ -38,7 +38,10 @@ std::string DescribeOptions(const CalibrateFlags& f) {
 }
 
 void Run(CalibrateFlags& f) {
-  if (!f.output.empty()) RefuseOverwritingInput(f.input, f.output);
+  if (!f.output.empty()) {
+    CheckWritable(f.output);
+    RefuseOverwritingInput(f.input, f.output);
+  }
   f.calibrate.solve.gravity_mps2 = f.gravity.Resolve();
   ThrowIfInvalid(f.calibrate.Validate(), "calibrate");
 

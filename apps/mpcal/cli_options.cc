@@ -56,9 +56,14 @@ void AddLogOptions(CLI::App& app, LogOptions& options) {
                  "Sample rate (Hz) when the time column is a sample index or absent")
       ->check(PositiveNumber)
       ->group("Input log");
-  app.add_flag_function(
-         "--gyro-dps", [&options](std::int64_t) { options.gyro_in_dps = true; },
-         "Gyroscope columns are in deg/s (default rad/s)")
+  const std::vector<std::pair<std::string, std::string>> gyro_units{
+      {"rads", "rads"}, {"rad/s", "rads"}, {"dps", "dps"}, {"deg/s", "dps"}};
+  app.add_option_function<std::string>(
+         "--gyro-units",
+         [&options](const std::string& unit) { options.gyro_in_dps = unit == "dps"; },
+         "Units of the gyroscope columns: rads (rad/s, the default) or dps (deg/s)")
+      ->transform(OneOf(gyro_units))
+      ->default_str("rads")
       ->group("Input log");
 }
 

@@ -10,6 +10,7 @@
 #include "cli_options.h"
 #include "command.h"
 #include "mpcal/atomic_file.h"
+#include "mpcal/calibrate.h"
 #include "mpcal/coverage.h"
 #include "mpcal/detect.h"
 #include "mpcal/error.h"
@@ -23,6 +24,7 @@ struct DetectFlags {
   std::string input;
   std::string json;
   LogOptions log;
+  GravityFlags gravity;
   CalibrateOptions calibrate;
 };
 
@@ -153,12 +155,16 @@ void PrintCoverage(const CoverageResult& cov, const CoverageOptions& o) {
 
 void Run(DetectFlags& f) {
   ThrowIfInvalid(f.calibrate.detect.Validate(), "detect");
-  if (!f.json.empty()) RefuseOverwritingInput(f.input, f.json);
+  if (!f.json.empty()) {
+    CheckWritable(f.json);
+    RefuseOverwritingInput(f.input, f.json);
+  }
 
   TerminalProgress progress("reading " + f.input);
   f.log.progress = progress.Callback();
   const Recording rec = ReadLog(f.input, f.log);
   progress.Done();
+  CheckUnits(rec, f.gravity.Resolve());
 
   const DetectOptions& o = f.calibrate.detect;
   const DetectResult det = DetectStatic(rec, o);
@@ -212,6 +218,7 @@ void AddDetectCommand(CLI::App& root) {
       flags->json,
       "Also write the intervals and the coverage as JSON (mpcal.detection/1)");
   AddLogOptions(*app, flags->log);
+  AddGravityOptions(*app, flags->gravity);
   AddCalibrateOptions(*app, flags->calibrate);
   app->footer(
       "Examples:\n"

@@ -3,6 +3,7 @@
 // code: 1 for bad input or I/O, 2 for usage.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -40,6 +41,28 @@ int main(int argc, char** argv) {
   mpcal::cli::AddSimulateCommand(app);
   mpcal::cli::AddReportCommand(app);
   mpcal::cli::AddDemoCommand(app);
+
+  // Bare `mpcal`: the help, then the error; an unknown word: say so. (CLI11
+  // says "A subcommand is required" to both.)
+  const CLI::App& root = app;
+  std::string names;
+  for (const CLI::App* sub : root.get_subcommands([](const CLI::App*) { return true; })) {
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+  }
+  if (argc < 2) {
+    fmt::print("{}", app.help());
+    PrintError(fmt::format("no subcommand given: one of {}", names));
+    return 2;
+  }
+  if (const std::string word = argv[1];
+      !word.empty() && word.front() != '-' && root.get_subcommands([&](const CLI::App* sub) {
+        return sub->check_name(word);
+      }).empty()) {
+    PrintError(fmt::format(
+        "'{}' is not an mpcal subcommand; the subcommands are {} (run 'mpcal --help')", word,
+        names));
+    return 2;
+  }
 
   try {
     app.parse(argc, argv);

@@ -38,7 +38,7 @@ std::string CommandLine(const ReportFlags& f) {
       add("--time-unit", std::string(ToString(f.files.log.time_unit)));
     }
     if (f.files.log.rate_hz > 0) add("--rate", fmt::format("{}", f.files.log.rate_hz));
-    if (f.files.log.gyro_in_dps) line += " --gyro-dps";
+    if (f.files.log.gyro_in_dps) line += " --gyro-units dps";
   }
   add("--repeat", f.files.repeatability);
   add("--verify", f.files.verification);
@@ -58,6 +58,7 @@ void Run(const ReportFlags& f) {
     throw Error("--verify-trajectories needs --verify (the result they belong to)");
   }
   ThrowIfInvalid(f.files.Validate(), "mpcal report");
+  CheckWritable(f.output);
   for (const std::string& input : {f.files.calibration,
                                    f.files.session,
                                    f.files.repeatability,

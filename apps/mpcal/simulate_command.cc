@@ -13,6 +13,7 @@
 
 #include "cli_options.h"
 #include "command.h"
+#include "mpcal/atomic_file.h"
 #include "mpcal/calibration_file.h"
 #include "mpcal/error.h"
 #include "mpcal/log_writer.h"
@@ -131,6 +132,8 @@ void Run(const SimulateStaticFlags& f) {
     throw Error(
         "simulate static: --truth needs a file name ('-' is only for the log, -o -)");
   }
+  CheckWritable(f.output);
+  if (!f.truth.empty()) CheckWritable(f.truth);
   // With the log on stdout the summary must not mix into it.
   std::FILE* summary = to_stdout ? stderr : stdout;
   const SimulateStaticOptions options = ToOptions(f);

@@ -44,6 +44,7 @@ void RunSimulateWalk(const SimulateWalkFlags& f) {
       {"--truth", f.truth},
       {"--path", f.path}};
   for (std::size_t i = 0; i < outputs.size(); ++i) {
+    if (!outputs[i].second.empty()) CheckWritable(outputs[i].second);
     for (std::size_t j = i + 1; j < outputs.size(); ++j) {
       if (!outputs[i].second.empty() && outputs[i].second == outputs[j].second) {
         throw Error(fmt::format("{} and {} name the same file '{}'",

@@ -62,11 +62,22 @@ void PrintRow(std::FILE* out, const char* name, const PathMetrics& m) {
              m.path_length_m);
 }
 
+std::string TrajectoryPath(const std::string& prefix, const std::string& role) {
+  return prefix + "-" + role + ".csv";
+}
+
 void RunVerify(CLI::App& cmd, VerifyFlags& f) {
-  for (const std::string* out : {&f.output}) {
-    RefuseOverwritingInput(f.imu, *out);
-    RefuseOverwritingInput(f.gnss, *out);
-    if (!f.calibration.empty()) RefuseOverwritingInput(f.calibration, *out);
+  std::vector<std::string> outputs = {f.output};
+  if (!f.trajectory_prefix.empty()) {
+    for (const char* role : {"reference", "raw", "corrected"}) {
+      outputs.push_back(TrajectoryPath(f.trajectory_prefix, role));
+    }
+  }
+  for (const std::string& out : outputs) {
+    CheckWritable(out);
+    RefuseOverwritingInput(f.imu, out);
+    RefuseOverwritingInput(f.gnss, out);
+    if (!f.calibration.empty()) RefuseOverwritingInput(f.calibration, out);
   }
   std::optional<Calibration> calibration;
   if (!f.calibration.empty()) {
@@ -107,7 +118,7 @@ void RunVerify(CLI::App& cmd, VerifyFlags& f) {
   std::vector<std::pair<std::string, std::string>> trajectories;
   if (!f.trajectory_prefix.empty()) {
     auto write = [&](const std::string& role, const std::string& csv) {
-      const std::string path = f.trajectory_prefix + "-" + role + ".csv";
+      const std::string path = TrajectoryPath(f.trajectory_prefix, role);
       WriteFileAtomically(path, csv);
       trajectories.emplace_back(role, RelativeTo(path, f.output));
     };

@@ -25,6 +25,12 @@ void WriteFileAtomically(const std::string& path, const std::string& content);
 void WriteStreamAtomically(const std::string& path,
                            const std::function<void(std::ostream&)>& write);
 
+/// Checks, before any work, that `path` can be written: not a directory, in
+/// a directory that exists and is writable ("-", standard output, always
+/// can), so that a long run does not end in an error that loses its result.
+/// \throws mpcal::Error naming the path and what to do.
+void CheckWritable(const std::string& path);
+
 /// Refuses (throws mpcal::Error) when `output` names the same file as
 /// `input` (same path, or the same inode through a link).
 void RefuseOverwritingInput(const std::string& input, const std::string& output);

@@ -32,6 +32,15 @@ struct CalibrateResult {
   std::vector<std::string> warnings;
 };
 
+/// Catches a log in one unit read as another from the magnitude of its
+/// readings, before detection (read in the wrong unit, the noise at rest looks
+/// ten times too large or too small and detection would fail for the wrong
+/// reason). Raw counts and an empty recording pass: counts have no fixed scale.
+/// \throws mpcal::Error when the median magnitude is far from `gravity_mps2`
+///   (outside 0.5-1.6 g, beyond any sensor's own errors), saying which
+///   `--units` the readings look like.
+void CheckUnits(const Recording& recording, double gravity_mps2);
+
 /// \throws mpcal::Error when the recording has too few static positions for
 ///   the model (the message says how many were found and what to record), or
 ///   when the positions leave a parameter undetermined, or invalid options.

@@ -128,6 +128,14 @@ std::string JoinNames(const std::vector<std::string>& names) {
   return out;
 }
 
+// The one line of a session that is not enough: its main problem, then what
+// to do, in order.
+std::string NotEnoughSummary(const CoverageResult& res) {
+  std::string out = res.problems.front() + ": " + res.advice.front();
+  for (std::size_t k = 1; k < res.advice.size(); ++k) out += "; " + res.advice[k];
+  return out;
+}
+
 }  // namespace
 
 std::string_view ToString(CoverageVerdict verdict) {
@@ -308,7 +316,8 @@ CoverageResult AssessCoverage(std::span<const Eigen::Vector3d> means,
   res.observability = Observability(u, options.model);
   const bool nine = options.model == ModelKind::kShinElSheimy9;
   const int params = ParameterCount(options.model);
-  res.required_positions = params + 1;
+  // The paper's 10 for 9 unknowns; the six-position protocol is six poses.
+  res.required_positions = nine ? params + 1 : params;
   res.recommended_positions = nine ? 19 : 7;
   const std::string model_name =
       nine ? "the 9-parameter model" : "the 6-parameter model (bias-scale-6)";
@@ -397,6 +406,11 @@ CoverageResult AssessCoverage(std::span<const Eigen::Vector3d> means,
         "{} distinct orientations; the paper recommends more than 18 spanning the sphere",
         res.distinct_positions));
   }
+  if (!nine && res.positions == params) {
+    res.problems.push_back(
+        "six positions for six parameters fit exactly: nothing checks the fit (a seventh "
+        "position would)");
+  }
   for (int i = 0; i < 3; ++i) {
     const AxisCoverage& ax = res.axes[static_cast<std::size_t>(i)];
     const char name = static_cast<char>('x' + i);
@@ -444,14 +458,12 @@ CoverageResult AssessCoverage(std::span<const Eigen::Vector3d> means,
                                   ? res.required_positions - res.positions
                                   : short_by);
     res.advice.push_back(record_advice(more));
-    if (nine && res.positions >= ParameterCount(ModelKind::kBiasScale6) + 1) {
+    if (nine && res.positions >= ParameterCount(ModelKind::kBiasScale6)) {
       res.advice.push_back(
           "or calibrate bias and scale only with --model bias-scale-6 (six-position "
           "protocol: each axis up and down)");
     }
-    res.summary = headline + ": " + res.advice.front();
-    for (std::size_t k = 1; k < res.advice.size(); ++k)
-      res.summary += "; " + res.advice[k];
+    res.summary = NotEnoughSummary(res);
   } else if (!res.problems.empty()) {
     res.verdict = CoverageVerdict::kUsableWithWarnings;
     if (short_by > 0 || !faces_needed.empty() || !suggestions.empty()) {
@@ -479,7 +491,23 @@ CoverageResult AssessCoverage(const DetectResult& detection,
   std::vector<Eigen::Vector3d> means;
   means.reserve(detection.intervals.size());
   for (const auto& iv : detection.intervals) means.push_back(iv.mean);
-  return AssessCoverage(means, options);
+  CoverageResult res = AssessCoverage(means, options);
+  // Positions that were held, but not long enough, are the first thing to
+  // fix when they are most of them: recording more of them would be dropped
+  // the same way. (A stray pause in a turn is dropped too, and is no advice.)
+  if (!res.good_enough() && detection.dropped_short > 0 &&
+      static_cast<std::size_t>(detection.dropped_short) >= detection.intervals.size()) {
+    // First in the advice (push and rotate: GCC 12 warns of a null
+    // dereference in its own code for an insert at the front).
+    res.advice.push_back(
+        fmt::format("{} still stretch{} shorter than the minimum (--min-static) {} dropped: "
+                    "hold each position longer",
+                    detection.dropped_short, detection.dropped_short == 1 ? "" : "es",
+                    detection.dropped_short == 1 ? "was" : "were"));
+    std::rotate(res.advice.rbegin(), res.advice.rbegin() + 1, res.advice.rend());
+    res.summary = NotEnoughSummary(res);
+  }
+  return res;
 }
 
 }  // namespace mpcal

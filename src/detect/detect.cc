@@ -16,6 +16,13 @@
 namespace mpcal {
 namespace {
 
+// The motion statistic of a MEMS accelerometer held still, in g: its white
+// noise over the three axes (a few mg for consumer parts at 100 Hz, ~0.03 g
+// for the noisiest at kHz rates) plus a hand's tremor. A recording whose
+// quietest stretches move more than this has no still positions, only
+// slower motion; detection says so when a raised --max-still lets it through.
+constexpr double kPlausibleQuietG = 0.03;
+
 // The value below which a fraction q of `values` lies (nearest rank).
 double Quantile(std::vector<double> values, double q) {
   if (values.empty()) return 0.0;
@@ -125,15 +132,26 @@ void ForEachWindow(const std::vector<Eigen::Vector3d>& a, std::size_t half, Visi
   }
 }
 
-// Median sample period from (at most ~100k) consecutive differences: the
-// window is set in samples, and a few gaps must not move it.
-double MedianPeriod(const std::vector<double>& t) {
+// Typical sample period from (at most ~100k) consecutive differences: the
+// mean of those no longer than 1.5 x their median, so that a few gaps do not
+// move it, while timestamps rounded to the millisecond (a 160 Hz log spaced
+// 6, 6, 7, 6 ms) still give the true rate rather than the rounded step.
+double TypicalPeriod(const std::vector<double>& t) {
   const std::size_t n = t.size();
   const std::size_t stride = std::max<std::size_t>(1, (n - 1) / 100000);
   std::vector<double> dt;
   dt.reserve((n - 1) / stride + 1);
   for (std::size_t i = 1; i < n; i += stride) dt.push_back(t[i] - t[i - 1]);
-  return Quantile(std::move(dt), 0.5);
+  const double limit = 1.5 * Quantile(dt, 0.5);
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const double d : dt) {
+    if (d <= limit) {
+      sum += d;
+      ++count;
+    }
+  }
+  return sum / static_cast<double>(count);
 }
 
 // What DetectStatic needs from every sample, found in one pass over them
@@ -367,7 +385,7 @@ DetectResult DetectStatic(const Recording& recording, const DetectOptions& optio
   const SampleScan scan = CheckAndScan(recording, src);
 
   DetectResult result;
-  const double period = n > 1 ? MedianPeriod(t) : 0.0;
+  const double period = n > 1 ? TypicalPeriod(t) : 0.0;
   // Odd window so that it is centred on its sample; 3 samples at least so
   // that a second difference fits in it.
   std::size_t half =
@@ -505,7 +523,14 @@ DetectResult DetectStatic(const Recording& recording, const DetectOptions& optio
   for (const Piece& p : pieces) {
     if (!groups.empty()) {
       const Piece& prev = groups.back().back();
-      const double gap_s = t[p.begin] - t[prev.end - 1];
+      // A stretch with no samples (the logger dropped data: a gap longer
+      // than a window ends a run above) is not motion: at the same
+      // orientation on both sides, the position went on through it.
+      double missing_s = 0.0;
+      for (std::size_t i = prev.end; i <= p.begin; ++i) {
+        if (t[i] - t[i - 1] > options.window_s) missing_s += t[i] - t[i - 1];
+      }
+      const double gap_s = t[p.begin] - t[prev.end - 1] - missing_s;
       // Neither the trimmed settling on both sides nor the window's smear (a
       // bump keeps the statistic high for a window longer than it lasts) is
       // part of the bump.
@@ -563,6 +588,16 @@ DetectResult DetectStatic(const Recording& recording, const DetectOptions& optio
     result.intervals.push_back(iv);
   }
 
+  const double quiet_g =
+      result.gravity_units > 0.0 ? result.quiet_level / result.gravity_units : 0.0;
+  if (!result.intervals.empty() && quiet_g > kPlausibleQuietG) {
+    result.warnings.push_back(fmt::format(
+        "even the quietest {:.0f}% of the recording moves at {:.3g} g, more than a MEMS "
+        "accelerometer held still shows (under {} g): if the sensor was not still, the "
+        "positions found are not static and a calibration from them is biased",
+        100.0 * options.quiet_quantile, quiet_g, kPlausibleQuietG));
+  }
+
   if (result.intervals.empty()) {
     const double span_s = t[n - 1] - t[0];
     if (result.dropped_clipped > 0) {
@@ -593,7 +628,7 @@ DetectResult DetectStatic(const Recording& recording, const DetectOptions& optio
           "{:.2f} s, shorter than the minimum {} s after trimming {} s of settling at "
           "each end (threshold {:.4g} = {} x the quiet level {:.4g}{}; {} still "
           "stretches dropped as too short): hold each position longer, or try "
-          "--min-static {:.2g} --settle {:.2g}, or a larger --threshold",
+          "--min-static {:.2g} --settle {:.2g}{}",
           span_s,
           result.longest_still_s,
           options.min_static_s,
@@ -606,7 +641,9 @@ DetectResult DetectStatic(const Recording& recording, const DetectOptions& optio
           result.dropped_short,
           std::max(0.1,
                    std::floor(9.0 * (result.longest_still_s - options.settle_s)) / 10.0),
-          options.settle_s / 2.0);
+          options.settle_s / 2.0,
+          // A capped threshold is already at the most a still sensor moves.
+          result.threshold_capped ? "" : ", or a larger --threshold");
     }
   }
   return result;

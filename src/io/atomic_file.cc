@@ -89,6 +89,10 @@ class FdStreambuf : public std::streambuf {
   int error_ = 0;
 };
 
+fs::path OutputDirectory(const fs::path& target) {
+  return target.has_parent_path() ? target.parent_path() : fs::path(".");
+}
+
 mode_t CurrentUmask() {
   const mode_t mask = ::umask(0);
   ::umask(mask);
@@ -117,17 +121,9 @@ void WriteStreamAtomically(const std::string& path,
     }
     return;
   }
-  if (path.empty()) throw Error("no output file given");
+  CheckWritable(path);
   const fs::path target(path);
-  std::error_code ec;
-  if (fs::is_directory(target, ec)) {
-    throw Error(fmt::format("cannot write '{}': it is a directory; give a file name", path));
-  }
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir, ec)) {
-    throw Error(fmt::format("cannot write '{}': directory '{}' does not exist", path,
-                            dir.string()));
-  }
+  const fs::path dir = OutputDirectory(target);
   // The temporary file sits beside the target so that rename(2) is atomic
   // (same file system), and is hidden so that a crash leaves no clutter in
   // listings.
@@ -173,6 +169,27 @@ void WriteStreamAtomically(const std::string& path,
     const int err = errno;
     ::unlink(tmp.c_str());
     throw Error(fmt::format("cannot write '{}': {}", path, std::strerror(err)));
+  }
+}
+
+void CheckWritable(const std::string& path) {
+  if (path == "-") return;
+  if (path.empty()) throw Error("no output file given");
+  const fs::path target(path);
+  std::error_code ec;
+  if (fs::is_directory(target, ec)) {
+    throw Error(fmt::format("cannot write '{}': it is a directory; give a file name", path));
+  }
+  const fs::path dir = OutputDirectory(target);
+  if (!fs::is_directory(dir, ec)) {
+    throw Error(fmt::format(
+        "cannot write '{}': directory '{}' does not exist; create it, or give another path",
+        path, dir.string()));
+  }
+  if (::access(dir.c_str(), W_OK) != 0) {
+    throw Error(fmt::format("cannot write '{}': directory '{}' is not writable ({}); give "
+                            "another path",
+                            path, dir.string(), std::strerror(errno)));
   }
 }
 

@@ -164,7 +164,7 @@ std::vector<std::string_view> SplitFields(std::string_view line, char delimiter)
 }
 
 bool ParsesAsNumber(std::string_view field, char decimal_point) {
-  field = Trim(field);
+  field = StripQuotes(field);
   if (!field.empty() && field.front() == '+') field.remove_prefix(1);
   if (field.empty()) return false;
   double v = 0;
@@ -175,7 +175,7 @@ bool ParsesAsNumber(std::string_view field, char decimal_point) {
 }
 
 bool LooksLikeInteger(std::string_view field) {
-  field = Trim(field);
+  field = StripQuotes(field);
   if (!field.empty() && (field.front() == '-' || field.front() == '+')) field.remove_prefix(1);
   if (field.empty()) return false;
   return std::all_of(field.begin(), field.end(), [](char c) { return c >= '0' && c <= '9'; });
@@ -443,6 +443,14 @@ struct ScannerState {
           "'{}' is not a text log (control characters in its first bytes); mpcal reads "
           "delimited text (CSV, TSV or whitespace separated numbers)",
           source));
+    }
+    const std::string_view head(buf.data(), n);
+    if (head.find('\n') == std::string_view::npos &&
+        std::count(head.begin(), head.end(), '\r') > 1) {
+      throw Error(fmt::format(
+          "'{}' ends its lines with a carriage return alone (classic Mac OS); mpcal reads "
+          "LF or CRLF line ends: convert it with tr '\\r' '\\n' < '{}' > fixed.csv",
+          source, source));
     }
   }
 
@@ -881,24 +889,35 @@ struct ScannerState {
       if (delimiter != ' ') {
         while (p < stop && IsBlank(*p)) ++p;
       }
+      // Spreadsheets and some loggers quote every field: "0.981".
+      const char* field_begin = p;
+      const char quote = p < stop && (*p == '"' || *p == '\'') ? *p : '\0';
+      if (quote != '\0') ++p;
       const char* number_begin = p;
       if (p < stop && *p == '+') ++p;
       double value = 0.0;
       const auto result = fast_float::from_chars_advanced(p, stop, value, number_format);
       const char* after = result.ptr;
-      const bool at_end =
-          after == stop || IsBlank(*after) || (delimiter != ' ' && *after == delimiter);
+      const char* field_end = after;
+      if (quote != '\0') {
+        if (after == stop || *after != quote) {
+          return Fail(why, Failure::kBadNumber, column, field_begin);
+        }
+        ++field_end;
+      }
+      const bool at_end = field_end == stop || IsBlank(*field_end) ||
+                          (delimiter != ' ' && *field_end == delimiter);
       if (result.ec != std::errc() || !at_end || (p != number_begin && *p == '-')) {
-        return Fail(why, Failure::kBadNumber, column, number_begin);
+        return Fail(why, Failure::kBadNumber, column, field_begin);
       }
       if (!std::isfinite(value)) {
         return Fail(why, Failure::kNonFinite, column, number_begin, after);
       }
-      p = after;
+      p = field_end;
       if (delimiter != ' ') {
         while (p < stop && IsBlank(*p)) ++p;
         if (p != stop && *p != delimiter) {
-          return Fail(why, Failure::kBadNumber, column, number_begin);
+          return Fail(why, Failure::kBadNumber, column, field_begin);
         }
       }
       switch (role) {
@@ -1331,6 +1350,21 @@ class ChunkPipeline {
   bool stop_ = false;
 };
 
+// A logger's timestamp that is a 16- or 32-bit counter wraps around to 0:
+// when time goes back from just below 2^N of its units, say so.
+std::string CounterWrapHint(double raw_time_before) {
+  for (const int bits : {16, 32}) {
+    const double wrap = std::ldexp(1.0, bits);
+    if (raw_time_before > 0.99 * wrap && raw_time_before < wrap) {
+      return fmt::format(
+          " (the timestamp looks like a {}-bit counter that wrapped around at {:.0f}: unwrap "
+          "it, or leave time out of --columns and give --rate HZ)",
+          bits, wrap);
+    }
+  }
+  return "";
+}
+
 // 1-based line (within the chunk) of the chunk's `row`th stored row: only
 // needed for messages, so found again by walking the lines.
 std::size_t LineOfRow(const Chunk& c, std::size_t row, std::size_t header_line) {
@@ -1441,8 +1475,9 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
         if (last_kept < rows) previous_line = line_of(last_kept);
         throw Error(fmt::format(
             "{}:{}: time goes back: {:.9g} s after {:.9g} s on line {}; the rows must be in "
-            "time order",
-            rec.source, line_of(k), t, before, previous_line));
+            "time order{}",
+            rec.source, line_of(k), t, before, previous_line,
+            CounterWrapHint(before / time_scale)));
       }
       if (last_kept < rows) previous_line = line_of(last_kept);
       rows_before += rows;

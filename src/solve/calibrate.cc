@@ -30,10 +30,10 @@ double MedianMagnitude(const Recording& recording) {
   return m[m.size() / 2];
 }
 
-// Catches a log in one unit read as another, from the magnitude at rest,
-// before detection: read in the wrong unit, the noise at rest looks ten
-// times too large or too small and detection would fail for the wrong reason.
+}  // namespace
+
 void CheckUnits(const Recording& recording, double gravity_mps2) {
+  if (recording.empty() || recording.units == AccelUnits::kCounts) return;
   const AccelUnits units = recording.units;
   const std::string& source = recording.source;
   const double ratio = MedianMagnitude(recording) * *FixedMps2PerUnit(units) / gravity_mps2;
@@ -55,8 +55,6 @@ void CheckUnits(const Recording& recording, double gravity_mps2) {
       gravity_mps2 / *FixedMps2PerUnit(units), ToString(units), hint));
 }
 
-}  // namespace
-
 std::string CalibrateOptions::Validate() const {
   if (std::string p = detect.Validate(); !p.empty()) return "detect: " + p;
   if (std::string p = solve.Validate(); !p.empty()) return "solve: " + p;
@@ -69,9 +67,7 @@ CalibrateResult CalibrateRecording(const Recording& recording,
     throw Error("calibration options: " + problem);
   }
   CalibrateResult result;
-  if (!recording.empty() && recording.units != AccelUnits::kCounts) {
-    CheckUnits(recording, options.solve.gravity_mps2);
-  }
+  CheckUnits(recording, options.solve.gravity_mps2);
   result.detection = DetectStatic(recording, options.detect);
   const auto& intervals = result.detection.intervals;
   if (intervals.empty()) throw Error(result.detection.message);
@@ -80,15 +76,10 @@ CalibrateResult CalibrateRecording(const Recording& recording,
     CoverageOptions coverage;
     coverage.model = options.solve.model;
     coverage.units = recording.units;
-    const bool six_would_do = options.solve.model == ModelKind::kShinElSheimy9 &&
-                              intervals.size() >= 6;
-    throw Error(fmt::format(
-        "{}: {}{}; run 'mpcal detect {}' to see the positions found", recording.source,
-        AssessCoverage(result.detection, coverage).summary,
-        six_would_do ? "; with each axis up and down once, --model bias-scale-6 calibrates "
-                       "bias and scale (the six-position protocol)"
-                     : "",
-        recording.source));
+    throw Error(fmt::format("{}: {}; run 'mpcal detect {}' to see the positions found",
+                            recording.source,
+                            AssessCoverage(result.detection, coverage).summary,
+                            recording.source));
   }
 
   // Raw counts: the nominal scale is the radius of the sphere the position

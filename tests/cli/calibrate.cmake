@@ -19,6 +19,9 @@ mpcal_cli_test(calibrate_ferraris_nine_parameters_refused EXIT 1
   ARGS calibrate ${_ferraris} --rate 102.4 -o calib.json)
 mpcal_cli_test(calibrate_missing_file EXIT 1 MATCH "no_such.csv" ABSENT calib.json
   ARGS calibrate no_such.csv -o calib.json)
+mpcal_cli_test(calibrate_output_directory_missing EXIT 1
+  MATCH "mpcal: error: cannot write 'no/such/dir/calib.json': directory 'no/such/dir' does not exist; create it"
+  ARGS calibrate ${_xsens} --units counts --gravity 9.81744 -o no/such/dir/calib.json)
 mpcal_cli_test(calibrate_output_is_input EXIT 1 MATCH "xsens_acc.mat"
   ARGS calibrate ${_xsens} --units counts -o ${_xsens})
 mpcal_cli_test(calibrate_unknown_model EXIT 2

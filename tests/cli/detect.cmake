@@ -31,6 +31,13 @@ mpcal_cli_test(detect_min_static_too_long EXIT 1
   MATCH "mpcal: error: .*longest still stretch lasts 4\\.[0-9]+ s, shorter than the minimum 30 s.*--min-static"
   ARGS detect ${MPCAL_TEST_DATA}/detect_four_positions.csv --units g --min-static 30)
 
+# The units are checked as calibrate checks them, against the gravity given.
+mpcal_cli_test(detect_wrong_units EXIT 1
+  MATCH "mpcal: error: .*detect_four_positions\\.csv: the readings have a median magnitude of .*look like g: add --units g"
+  ARGS detect ${MPCAL_TEST_DATA}/detect_four_positions.csv --units mps2)
+mpcal_cli_test(detect_takes_gravity EXIT 0 MATCH "^good enough to calibrate"
+  ARGS detect ${_xsens} --units counts --gravity 9.81744)
+
 # Bad input and usage.
 mpcal_cli_test(detect_missing_file EXIT 1 MATCH "mpcal: error: .*no_such_log\\.csv"
   ABSENT out.json
@@ -39,3 +46,8 @@ mpcal_cli_test(detect_bad_threshold EXIT 2 MATCH "mpcal: error: .*--threshold"
   ARGS detect ${MPCAL_TEST_DATA}/detect_four_positions.csv --threshold 0.5)
 mpcal_cli_test(detect_help EXIT 0 MATCH "mpcal detect xsens_acc.mat --units counts"
   ARGS detect --help)
+mpcal_cli_test(detect_gyro_units_dps EXIT 0 MATCH "verdict: good"
+  ARGS detect ${_ferraris} --rate 102.4 --model bias-scale-6 --gyro-units dps)
+mpcal_cli_test(detect_gyro_units_unknown EXIT 2
+  MATCH "mpcal: error: --gyro-units: 'rpm' is not one of: rads, rad/s, dps, deg/s"
+  ARGS detect ${_ferraris} --rate 102.4 --gyro-units rpm)

@@ -158,7 +158,40 @@ TEST(AssessCoverage, SixFacesAreNotEnoughForNineParameters) {
   six.model = ModelKind::kBiasScale6;
   const CoverageResult r6 = AssessCoverage(means, six);
   EXPECT_EQ(r6.verdict, CoverageVerdict::kGood) << r6.summary;
-  EXPECT_EQ(r6.required_positions, 7);
+  EXPECT_EQ(r6.required_positions, 6);
+  // The six poses alone fit exactly: usable, with the warning that nothing
+  // checks them.
+  const std::vector<Eigen::Vector3d> six_poses(means.begin(), means.begin() + 6);
+  const CoverageResult exact = AssessCoverage(six_poses, six);
+  EXPECT_EQ(exact.verdict, CoverageVerdict::kUsableWithWarnings) << exact.summary;
+  EXPECT_THAT(exact.problems, ::testing::Contains(HasSubstr("nothing checks the fit")));
+  // Under the 9-parameter model the advice offers the six-position protocol
+  // once.
+  const CoverageResult nine = AssessCoverage(six_poses, {});
+  EXPECT_THAT(nine.summary, HasSubstr("--model bias-scale-6"));
+  EXPECT_EQ(nine.summary.find("bias-scale-6"), nine.summary.rfind("bias-scale-6"));
+}
+
+TEST(AssessCoverage, SaysToHoldLongerWhenPositionsWereDroppedAsTooShort) {
+  // Four positions kept, twenty held too briefly: recording more the same
+  // way would not help.
+  DetectResult det;
+  for (const auto& m : Readings(Cube26(), kG, Eigen::Vector3d::Zero())) {
+    if (det.intervals.size() == 4) break;
+    StaticInterval iv;
+    iv.mean = m;
+    det.intervals.push_back(iv);
+  }
+  det.dropped_short = 20;
+  const CoverageResult r = AssessCoverage(det, {});
+  EXPECT_EQ(r.verdict, CoverageVerdict::kNotEnough);
+  EXPECT_THAT(r.summary,
+              HasSubstr("session has 4 static positions, the 9-parameter model needs at "
+                        "least 10: 20 still stretches shorter than the minimum "
+                        "(--min-static) were dropped: hold each position longer; record"));
+  // Fewer dropped than kept: stray pauses, not the way the session was held.
+  det.dropped_short = 3;
+  EXPECT_THAT(AssessCoverage(det, {}).summary, Not(HasSubstr("hold each position longer")));
 }
 
 TEST(AssessCoverage, NamesTheFacesNeverDown) {

@@ -220,6 +220,55 @@ TEST(DetectStatic, MergesAShortBumpAtTheSameOrientation) {
   EXPECT_EQ(split.merged, 0);
 }
 
+TEST(DetectStatic, MergesAPositionAcrossAGapInTheData) {
+  // The logger drops 2 s in the middle of a 6 s position: neither piece is
+  // long enough alone, but no samples is not motion.
+  Maker mk;
+  Made m = mk.Make({{Eigen::Vector3d::UnitZ(), 6.0},
+                    {Eigen::Vector3d::UnitX(), 6.0},
+                    {Eigen::Vector3d::UnitY(), 6.0}});
+  const std::size_t mid = (m.still[1].first + m.still[1].second) / 2;
+  const std::size_t dropped = 200;  // 2 s at 100 Hz
+  for (std::size_t i = mid + dropped; i < m.recording.size(); ++i) {
+    m.recording.time_s[i - dropped] = m.recording.time_s[i] + 2.0;
+    m.recording.accel[i - dropped] = m.recording.accel[i];
+  }
+  m.recording.time_s.resize(m.recording.size() - dropped);
+  m.recording.accel.resize(m.recording.time_s.size());
+  const DetectResult r = DetectStatic(m.recording, {});
+  ASSERT_EQ(r.intervals.size(), 3u);
+  EXPECT_EQ(r.merged, 1);
+  EXPECT_EQ(r.dropped_short, 0);
+  const double tol = kMeanTolSigmas * 0.02 / std::sqrt(double(r.intervals[1].samples()));
+  EXPECT_LT((r.intervals[1].mean - m.truth[1]).cwiseAbs().maxCoeff(), tol);
+}
+
+TEST(DetectStatic, TakesTheSampleRateFromTimestampsRoundedToTheMillisecond) {
+  // 160 Hz logged in whole milliseconds: steps of 6 and 7 ms.
+  Made m = Maker{.rate_hz = 160.0}.Make(CubeFaces(4.0));
+  for (double& t : m.recording.time_s) t = std::round(t * 1e3) / 1e3;
+  const DetectResult r = DetectStatic(m.recording, {});
+  EXPECT_NEAR(1.0 / r.sample_period_s, 160.0, 0.5);
+  EXPECT_EQ(r.intervals.size(), 6u);
+}
+
+TEST(DetectStatic, WarnsWhenEvenTheQuietestStretchesMoveMoreThanAStillSensor) {
+  // A sensor waved about all the time (0.06 g of shake), with --max-still
+  // raised so that its least-moving stretches pass as positions.
+  Maker mk;
+  mk.noise = 0.6;
+  mk.shake_mps2 = 3.0;
+  const Made m = mk.Make(CubeFaces(6.0));
+  DetectOptions raised;
+  raised.max_still_g = 0.5;
+  const DetectResult r = DetectStatic(m.recording, raised);
+  ASSERT_FALSE(r.intervals.empty());
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_THAT(r.warnings[0], HasSubstr("more than a MEMS accelerometer held still shows"));
+  // The same session with a quiet sensor: no warning.
+  EXPECT_TRUE(DetectStatic(Maker{}.Make(CubeFaces(6.0)).recording, raised).warnings.empty());
+}
+
 TEST(DetectStatic, KeepsApartNearbyOrientationsAfterAQuickTurn) {
   Maker mk;
   mk.turn_s = 0.5;

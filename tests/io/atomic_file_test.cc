@@ -83,6 +83,21 @@ TEST(AtomicFile, FailureInTheMiddleLeavesNothingAndKeepsTheOldFile) {
   EXPECT_EQ(FilesIn(dir), 1u);
 }
 
+TEST(AtomicFile, CheckWritableBeforeAnyWork) {
+  ScratchDir dir;
+  EXPECT_NO_THROW(CheckWritable(dir.Path("out.txt")));
+  EXPECT_NO_THROW(CheckWritable("-"));
+  EXPECT_EQ(FilesIn(dir), 0u);  // checking writes nothing
+  try {
+    CheckWritable(dir.Path("no/such/dir/out.txt"));
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("does not exist; create it, or give another path"));
+  }
+  EXPECT_THROW(CheckWritable(dir.path().string()), Error);
+  EXPECT_THROW(CheckWritable(""), Error);
+}
+
 TEST(AtomicFile, MissingDirectoryOrDirectoryTarget) {
   ScratchDir dir;
   try {

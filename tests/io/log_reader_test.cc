@@ -235,6 +235,40 @@ TEST(ReadLog, TimeGoingBackIsAnError) {
               AllOf(HasSubstr("log.txt:4"), HasSubstr("time goes back")));
 }
 
+TEST(ReadLog, TimeGoingBackFromAWrappedCounterSaysSo) {
+  // A 32-bit microsecond counter wraps at 4294.967296 s.
+  ScratchDir dir;
+  EXPECT_THAT(ReadError(dir,
+                        "t,ax,ay,az\n4294950000,0,0,1\n4294960000,0,0,1\n"
+                        "2704,0,0,1\n12704,0,0,1\n",
+                        WithTimeUnit(TimeUnit::kMicroseconds)),
+              AllOf(HasSubstr("time goes back"), HasSubstr("32-bit counter that wrapped")));
+  // Time that simply goes back gets no such guess.
+  EXPECT_THAT(ReadError(dir, "t,ax,ay,az\n1,0,0,1\n2,0,0,1\n1.5,0,0,1\n"),
+              ::testing::Not(HasSubstr("counter")));
+}
+
+TEST(ReadLog, QuotedFieldsAsSpreadsheetsWriteThem) {
+  ScratchDir dir;
+  const Recording r = Read(dir,
+                           "\"time\",\"ax\",\"ay\",\"az\"\n"
+                           "\"0.00\",\"0.1\",\"-0.2\",\"9.8\"\n"
+                           "\"0.01\", \"0.11\" ,'-0.21',9.81\n");
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r.time_s[1], 0.01);
+  EXPECT_EQ(r.accel[1], Eigen::Vector3d(0.11, -0.21, 9.81));
+  // Without a header too, and an unclosed quote is a malformed field.
+  EXPECT_EQ(Read(dir, "\"0\",\"1\",\"2\",\"3\"\n\"1\",\"1\",\"2\",\"3\"\n").size(), 2u);
+  EXPECT_THAT(ReadError(dir, "t,ax,ay,az\n0,1,2,3\n1,\"1,2,3\n2,1,2,3\n"),
+              AllOf(HasSubstr("log.txt:3"), HasSubstr("column 'ax'")));
+}
+
+TEST(ReadLog, CarriageReturnLineEndsAloneSayHowToConvert) {
+  ScratchDir dir;
+  EXPECT_THAT(ReadError(dir, "t,ax,ay,az\r0,0,0,1\r1,0,0,1\r"),
+              AllOf(HasSubstr("carriage return alone"), HasSubstr("tr ")));
+}
+
 TEST(ReadLog, TruncatedLastLineDroppedWithWarning) {
   ScratchDir dir;
   const Recording r = Read(dir, "t,ax,ay,az\n0.1,1,2,3\n0.2,4,5,6\n0.3,7,8");
