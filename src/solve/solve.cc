@@ -498,20 +498,27 @@ SolveResult Solve(std::span<const PositionObservation> positions,
     result.cross_validation_rms_mps2 = Rms(result.cross_validation_residual_mps2, predicted);
   }
 
-  // Covariance: (JᵀJ)⁻¹ of the whitened problem, scaled by the a-posteriori
-  // variance of unit weight (METHOD.md §3) when it exceeds 1, never shrunk
-  // below the a-priori level. The weights already carry the noise measured
-  // from thousands of samples per position; K − p residuals (5 for 14
-  // positions) can reveal extra error (hand tremor, non-white noise, misfit)
-  // but would often understate the noise by half if trusted the other way.
+  // Covariance: (JᵀJ)⁻¹ of the whitened problem, scaled up by the
+  // a-posteriori variance of unit weight (METHOD.md §3), never shrunk below
+  // the a-priori level. The weights already carry the noise measured from
+  // thousands of samples per position; K − p residuals (5 for 14 positions)
+  // can reveal extra error (hand tremor, non-white noise, misfit) but would
+  // often understate the noise by half if trusted the other way. Nor are a
+  // few residuals trusted alone the other way: the a-priori level counts as
+  // kPriorDof residuals of evidence (the update of a scaled inverse-χ² prior
+  // centred on 1), so that 5 residuals at 3.7 times their expected square by
+  // chance (1 session in 2000) raise the 1σ by 1.4, not 1.9, while 30 at
+  // that level, a real misfit, raise it by 1.7.
   double chi2 = 0.0;
   for (std::size_t j = 0; j < in.index.size(); ++j) {
     chi2 += std::pow(fit->Residual(j) / fit->sigmas()[j], 2);
   }
   // With no redundancy the residuals say nothing: keep the a-priori level.
   result.variance_factor = dof > 0 ? chi2 / dof : 1.0;
+  constexpr double kPriorDof = 10.0;
+  const double covariance_scale = (kPriorDof + chi2) / (kPriorDof + dof);
   result.covariance.topLeftCorner(p, p) =
-      std::max(1.0, result.variance_factor) * fit->UnscaledCovariance();
+      std::max(1.0, covariance_scale) * fit->UnscaledCovariance();
   result.std = FromVector(result.covariance.diagonal().cwiseMax(0.0).cwiseSqrt());
   return result;
 }

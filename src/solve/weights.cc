@@ -50,7 +50,11 @@ double PositionScatterVariance(const std::vector<double>& residuals_mps2,
   // Median of the χ² distribution with one degree of freedom.
   constexpr double kChiSquare1Median = 0.454936;
   const std::size_t count = residuals_mps2.size();
-  if (count <= static_cast<std::size_t>(parameters)) return 0.0;
+  // The median of a few residuals cannot tell a scatter from chance (a
+  // white-noise session of 15 positions once passed the test below); with
+  // little redundancy the variance factor is the only safeguard.
+  constexpr std::size_t kMinRedundancy = 10;
+  if (count < static_cast<std::size_t>(parameters) + kMinRedundancy) return 0.0;
   const double target = kChiSquare1Median * static_cast<double>(count - parameters) /
                         static_cast<double>(count);
   auto median_ratio = [&](double tau2) {
@@ -72,10 +76,11 @@ double PositionScatterVariance(const std::vector<double>& residuals_mps2,
       1.0 + kEvidenceSigmas * 2.33 / std::sqrt(static_cast<double>(count));
   if (median_ratio(0.0) <= evidence_ratio * target) return 0.0;
   // The ratio falls monotonically with τ²: bisect between 0 and the largest
-  // squared residual, which certainly brings it below the target.
+  // squared residual over the target, which brings every r²/(σ² + τ²), and
+  // so their median, below the target.
   double lo = 0.0;
   double hi = 0.0;
-  for (double r : residuals_mps2) hi = std::max(hi, r * r);
+  for (double r : residuals_mps2) hi = std::max(hi, r * r / target);
   for (int i = 0; i < 100 && hi - lo > 1e-12 * hi; ++i) {
     const double mid = 0.5 * (lo + hi);
     (median_ratio(mid) > target ? lo : hi) = mid;

@@ -32,7 +32,8 @@ double ResidualSigma(const ErrorModel& model, const Eigen::Vector3d& mean_mps2,
 /// that of χ²₁ (scaled by (K − p)/K for the fitted parameters). Zero unless
 /// the residuals show more scatter than the noise explains by ten times the
 /// sampling spread of that median, so that white-noise sessions keep their
-/// efficient weights.
+/// efficient weights, and zero with fewer than 10 redundant positions
+/// (K − p < 10), whose median is too uncertain to tell.
 double PositionScatterVariance(const std::vector<double>& residuals_mps2,
                                const std::vector<double>& sigmas_mps2, int parameters);
 
