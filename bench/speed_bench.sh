@@ -12,10 +12,11 @@
 #
 # The session: 1 kHz, 26 positions, 60 s each (1.7 M rows, ~110 MB),
 # from `mpcal simulate static`. Each figure is the median of REPETITIONS
-# runs (default 5) after one warm-up that puts the file in the page cache.
+# runs (default 11: these machines are shared and noisy) after one warm-up
+# that puts the file in the page cache.
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
-reps=${2:-5}
+reps=${2:-11}
 here=$(cd "$(dirname "$0")" && pwd)
 mpcal=$build/mpcal
 floor=$build/bench/mpcal_parse_floor
