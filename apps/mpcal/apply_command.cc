@@ -32,8 +32,7 @@ void RunApply(CLI::App& cmd, ApplyFlags& flags) {
   }
   // The log is refused as the output inside ApplyCalibration; the
   // calibration file is only known here.
-  CheckWritable(flags.output);
-  RefuseOverwritingInput(flags.calibration, flags.output);
+  CheckOutput(flags.output, {flags.calibration});
   const Calibration calibration = ReadCalibrationFile(flags.calibration);
   ApplyOptions options = flags.options;
   // A log from the calibrated sensor is in the calibration's units unless

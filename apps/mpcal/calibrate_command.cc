@@ -38,10 +38,7 @@ std::string DescribeOptions(const CalibrateFlags& f) {
 }
 
 void Run(CalibrateFlags& f) {
-  if (!f.output.empty()) {
-    CheckWritable(f.output);
-    RefuseOverwritingInput(f.input, f.output);
-  }
+  if (!f.output.empty()) CheckOutput(f.output, {f.input});
   f.calibrate.solve.gravity_mps2 = f.gravity.Resolve();
   ThrowIfInvalid(f.calibrate.Validate(), "calibrate");
 

@@ -155,10 +155,7 @@ void PrintCoverage(const CoverageResult& cov, const CoverageOptions& o) {
 
 void Run(DetectFlags& f) {
   ThrowIfInvalid(f.calibrate.detect.Validate(), "detect");
-  if (!f.json.empty()) {
-    CheckWritable(f.json);
-    RefuseOverwritingInput(f.input, f.json);
-  }
+  if (!f.json.empty()) CheckOutput(f.json, {f.input});
 
   TerminalProgress progress("reading " + f.input);
   f.log.progress = progress.Callback();

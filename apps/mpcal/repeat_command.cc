@@ -96,9 +96,7 @@ void Run(RepeatFlags& f) {
     }
   }
   for (const std::string& out : {f.json, f.csv}) {
-    if (out.empty()) continue;
-    CheckWritable(out);
-    for (const std::string& in : f.inputs) RefuseOverwritingInput(in, out);
+    if (!out.empty()) CheckOutput(out, f.inputs);
   }
   f.calibrate.solve.gravity_mps2 = f.gravity.Resolve();
   ThrowIfInvalid(f.calibrate.Validate(), "repeat");

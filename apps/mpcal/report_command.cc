@@ -58,13 +58,8 @@ void Run(const ReportFlags& f) {
     throw Error("--verify-trajectories needs --verify (the result they belong to)");
   }
   ThrowIfInvalid(f.files.Validate(), "mpcal report");
-  CheckWritable(f.output);
-  for (const std::string& input : {f.files.calibration,
-                                   f.files.session,
-                                   f.files.repeatability,
-                                   f.files.verification}) {
-    if (!input.empty()) RefuseOverwritingInput(input, f.output);
-  }
+  CheckOutput(f.output, {f.files.calibration, f.files.session, f.files.repeatability,
+                         f.files.verification});
   ReportInputs inputs = LoadReportInputs(f.files);
   inputs.command_line = CommandLine(f);
   WriteReport(f.output, inputs);

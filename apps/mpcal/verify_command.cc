@@ -73,12 +73,7 @@ void RunVerify(CLI::App& cmd, VerifyFlags& f) {
       outputs.push_back(TrajectoryPath(f.trajectory_prefix, role));
     }
   }
-  for (const std::string& out : outputs) {
-    CheckWritable(out);
-    RefuseOverwritingInput(f.imu, out);
-    RefuseOverwritingInput(f.gnss, out);
-    if (!f.calibration.empty()) RefuseOverwritingInput(f.calibration, out);
-  }
+  for (const std::string& out : outputs) CheckOutput(out, {f.imu, f.gnss, f.calibration});
   std::optional<Calibration> calibration;
   if (!f.calibration.empty()) {
     calibration = ReadCalibrationFile(f.calibration);

@@ -10,6 +10,7 @@
 #include <functional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace mpcal {
 
@@ -34,5 +35,11 @@ void CheckWritable(const std::string& path);
 /// Refuses (throws mpcal::Error) when `output` names the same file as
 /// `input` (same path, or the same inode through a link).
 void RefuseOverwritingInput(const std::string& input, const std::string& output);
+
+/// What a command checks of each output before it reads anything:
+/// CheckWritable, then RefuseOverwritingInput against every input given
+/// (empty names, options not given, are skipped).
+/// \throws mpcal::Error as those two do.
+void CheckOutput(const std::string& output, const std::vector<std::string>& inputs);
 
 }  // namespace mpcal

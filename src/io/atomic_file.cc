@@ -208,4 +208,11 @@ void RefuseOverwritingInput(const std::string& input, const std::string& output)
   }
 }
 
+void CheckOutput(const std::string& output, const std::vector<std::string>& inputs) {
+  CheckWritable(output);
+  for (const std::string& input : inputs) {
+    if (!input.empty()) RefuseOverwritingInput(input, output);
+  }
+}
+
 }  // namespace mpcal

@@ -98,6 +98,14 @@ TEST(AtomicFile, CheckWritableBeforeAnyWork) {
   EXPECT_THROW(CheckWritable(""), Error);
 }
 
+TEST(AtomicFile, CheckOutputRefusesEveryInputGivenAndSkipsTheEmptyOnes) {
+  ScratchDir dir;
+  const std::string log = dir.Write("log.csv", "t,ax,ay,az\n");
+  EXPECT_NO_THROW(CheckOutput(dir.Path("out.json"), {log, ""}));
+  EXPECT_THROW(CheckOutput(log, {"", log}), Error);
+  EXPECT_THROW(CheckOutput(dir.Path("no/such/out.json"), {log}), Error);
+}
+
 TEST(AtomicFile, MissingDirectoryOrDirectoryTarget) {
   ScratchDir dir;
   try {
