@@ -5,7 +5,7 @@ BUILD      ?= build
 JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 
-.PHONY: all deps build demo test bench fuzz test-sanitize install clean format
+.PHONY: all deps configure build demo test bench fuzz test-sanitize install clean format
 
 all: build
 
@@ -15,10 +15,15 @@ deps:
 $(BUILD)/CMakeCache.txt: | deps
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_ARGS)
 
-build: deps $(BUILD)/CMakeCache.txt
+configure: deps $(BUILD)/CMakeCache.txt
+
+build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-demo: build
+# The demo needs only the library and the command, not the test suite, so a
+# newcomer sees a result as soon as those are compiled.
+demo: configure
+	cmake --build $(BUILD) -j $(JOBS) --target mpcal_cli
 	$(BUILD)/mpcal demo
 
 test: build

@@ -20,7 +20,7 @@ reps=${2:-11}
 here=$(cd "$(dirname "$0")" && pwd)
 mpcal=$build/mpcal
 floor=$build/bench/mpcal_parse_floor
-xsens=$here/../../shared/data/xsens-multiposition/xsens_acc.mat
+xsens=$here/../tests/data/real/xsens-multiposition/xsens_acc.mat
 
 for exe in "$mpcal" "$floor"; do
   [ -x "$exe" ] || { echo "speed_bench: $exe not built (make build)" >&2; exit 1; }

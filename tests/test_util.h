@@ -16,9 +16,10 @@ inline std::string TestDataPath(const std::string& name) {
   return std::string(MPCAL_TEST_DATA_DIR) + "/" + name;
 }
 
-/// A file among the team's real recordings (../shared/data/).
-inline std::string SharedDataPath(const std::string& name) {
-  return std::string(MPCAL_SHARED_DATA_DIR) + "/" + name;
+/// A file among the real recordings from other projects (tests/data/real/,
+/// each folder with its source and licence).
+inline std::string RealDataPath(const std::string& name) {
+  return std::string(MPCAL_REAL_DATA_DIR) + "/" + name;
 }
 
 /// A fresh scratch directory for one test, removed with the object.

@@ -1,7 +1,7 @@
 # mpcal calibrate and mpcal demo: the main job, on the real recordings, and
 # its refusals (one line, exit 1 or 2, no calibration file left behind).
-set(_xsens ${MPCAL_SHARED_DATA}/xsens-multiposition/xsens_acc.mat)
-set(_ferraris ${MPCAL_SHARED_DATA}/imucal-ferraris/example_ferraris_session.csv)
+set(_xsens ${MPCAL_REAL_DATA}/xsens-multiposition/xsens_acc.mat)
+set(_ferraris ${MPCAL_REAL_DATA}/imucal-ferraris/example_ferraris_session.csv)
 
 mpcal_cli_test(calibrate_help EXIT 0 MATCH "mpcal calibrate session.csv -o calib.json"
   ARGS calibrate --help)

@@ -1,6 +1,6 @@
 # mpcal detect: the positions of a session and whether they are enough.
-set(_xsens ${MPCAL_SHARED_DATA}/xsens-multiposition/xsens_acc.mat)
-set(_ferraris ${MPCAL_SHARED_DATA}/imucal-ferraris/example_ferraris_session.csv)
+set(_xsens ${MPCAL_REAL_DATA}/xsens-multiposition/xsens_acc.mat)
+set(_ferraris ${MPCAL_REAL_DATA}/imucal-ferraris/example_ferraris_session.csv)
 
 # Real sessions good enough for their model: exit 0, the table and the verdict.
 mpcal_cli_test(detect_xsens_counts EXIT 0

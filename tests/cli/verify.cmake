@@ -1,8 +1,8 @@
 # mpcal simulate walk and mpcal verify: a simulated walk verified end to end,
 # the real RTKLIB walk, and the errors a user meets (one line, no output left).
 set(_walk ${CMAKE_CURRENT_BINARY_DIR}/simulate_walk_turn)
-set(_real_imu ${MPCAL_SHARED_DATA}/rtklib-walk/imu_1730_sf.csv)
-set(_real_pos ${MPCAL_SHARED_DATA}/rtklib-walk/gnss_1730_sf.pos)
+set(_real_imu ${MPCAL_REAL_DATA}/rtklib-walk/imu_1730_sf.csv)
+set(_real_pos ${MPCAL_REAL_DATA}/rtklib-walk/gnss_1730_sf.pos)
 set(_real_columns --columns t=0,ax=1,ay=2,az=3,gx=4,gy=5,gz=6 --units g)
 
 mpcal_cli_test(verify_help EXIT 0 MATCH "mpcal verify --imu walk.csv --gnss ref.pos" ARGS verify --help)

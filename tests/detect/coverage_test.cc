@@ -275,7 +275,7 @@ TEST(AssessCoverage, XsensSessionIsUsableForNineParameters) {
   LogOptions lo;
   lo.units = AccelUnits::kCounts;
   const Recording rec =
-      ReadLog(testing::SharedDataPath("xsens-multiposition/xsens_acc.mat"), lo);
+      ReadLog(testing::RealDataPath("xsens-multiposition/xsens_acc.mat"), lo);
   const DetectResult det = DetectStatic(rec, {});
   CoverageOptions o;
   o.units = AccelUnits::kCounts;

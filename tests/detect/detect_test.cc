@@ -21,7 +21,7 @@ namespace mpcal {
 namespace {
 
 using ::testing::HasSubstr;
-using testing::SharedDataPath;
+using testing::RealDataPath;
 
 constexpr double kG = 9.80665;
 // A mean of n white-noise samples is within this many σ/√n of the truth.
@@ -478,11 +478,11 @@ INSTANTIATE_TEST_SUITE_P(
       return name;
     });
 
-// The real recordings (../shared/data).
+// The real recordings (tests/data/real/).
 TEST(DetectReal, XsensSessionHasTheInitialRestAndAbout37Positions) {
   LogOptions lo;
   lo.units = AccelUnits::kCounts;
-  const Recording rec = ReadLog(SharedDataPath("xsens-multiposition/xsens_acc.mat"), lo);
+  const Recording rec = ReadLog(RealDataPath("xsens-multiposition/xsens_acc.mat"), lo);
   const DetectResult r = DetectStatic(rec, {});
   ASSERT_GE(r.intervals.size(), 36u);
   EXPECT_LE(r.intervals.size(), 40u);
@@ -508,8 +508,8 @@ TEST(DetectReal, FerrarisSessionCoversEveryPoseAndNoRotation) {
   lo.time_unit = TimeUnit::kSampleIndex;
   lo.rate_hz = 102.4;
   const Recording rec =
-      ReadLog(SharedDataPath("imucal-ferraris/example_ferraris_session.csv"), lo);
-  std::ifstream in(SharedDataPath("imucal-ferraris/example_ferraris_session_list.json"));
+      ReadLog(RealDataPath("imucal-ferraris/example_ferraris_session.csv"), lo);
+  std::ifstream in(RealDataPath("imucal-ferraris/example_ferraris_session_list.json"));
   const nlohmann::json sections = nlohmann::json::parse(in);
   const DetectResult r = DetectStatic(rec, {});
   ASSERT_FALSE(r.intervals.empty());

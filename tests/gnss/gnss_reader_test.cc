@@ -16,7 +16,7 @@ namespace {
 
 using ::testing::AllOf;
 using ::testing::HasSubstr;
-using testing::SharedDataPath;
+using testing::RealDataPath;
 using testing::TestDataPath;
 using ::testing::ThrowsMessage;
 
@@ -66,7 +66,7 @@ TEST(RtklibPos, EnuAgreesWithGeographicLibAtEveryEpoch) {
 }
 
 TEST(RtklibPos, ReadsTheWholeRealWalk) {
-  const GnssTrack t = ReadGnss(SharedDataPath("rtklib-walk/gnss_1730_sf.pos"));
+  const GnssTrack t = ReadGnss(RealDataPath("rtklib-walk/gnss_1730_sf.pos"));
   ASSERT_EQ(t.size(), 536u);
   // The data README: a closed loop, start and end 0.2 m apart.
   const Eigen::Vector3d d = t.enu_m.back() - t.enu_m.front();
@@ -79,7 +79,7 @@ TEST(RtklibPos, ReadsTheWholeRealWalk) {
 TEST(RtklibPos, QualityFilterDropsFloatEpochsWithAWarning) {
   GnssReadOptions options;
   options.max_rtklib_quality = 1;
-  const GnssTrack t = ReadGnss(SharedDataPath("rtklib-walk/gnss_1730_sf.pos"), options);
+  const GnssTrack t = ReadGnss(RealDataPath("rtklib-walk/gnss_1730_sf.pos"), options);
   EXPECT_EQ(t.size(), 349u);
   ASSERT_EQ(t.warnings.size(), 1u);
   EXPECT_THAT(t.warnings[0], HasSubstr("dropped 187 epochs"));

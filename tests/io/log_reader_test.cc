@@ -20,7 +20,7 @@ using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::ElementsAre;
 using mpcal::testing::ScratchDir;
-using mpcal::testing::SharedDataPath;
+using mpcal::testing::RealDataPath;
 using mpcal::testing::TestDataPath;
 
 LogOptions WithUnits(AccelUnits units) {
@@ -419,7 +419,7 @@ TEST(ReadLog, LongLogAcrossManyChunksMatchesItsRows) {
 TEST(ReadLog, RealXsensRecordingInCounts) {
   LogOptions options;
   options.units = AccelUnits::kCounts;
-  const Recording r = ReadLog(SharedDataPath("xsens-multiposition/xsens_acc.mat"), options);
+  const Recording r = ReadLog(RealDataPath("xsens-multiposition/xsens_acc.mat"), options);
   // 512 s at 100 Hz.
   EXPECT_NEAR(static_cast<double>(r.size()), 51200.0, 200.0);
   EXPECT_EQ(r.time_s[0], 2.984e-02);
@@ -430,7 +430,7 @@ TEST(ReadLog, RealXsensRecordingInCounts) {
 TEST(ReadLog, RealFerrarisSessionWithSampleIndex) {
   LogOptions options;
   options.rate_hz = 102.4;
-  const Recording r = ReadLog(SharedDataPath("imucal-ferraris/example_ferraris_session.csv"),
+  const Recording r = ReadLog(RealDataPath("imucal-ferraris/example_ferraris_session.csv"),
                               options);
   EXPECT_GT(r.size(), 10000u);
   EXPECT_EQ(r.accel[0].x(), 10.332114257812501);
@@ -441,7 +441,7 @@ TEST(ReadLog, RealFerrarisSessionWithSampleIndex) {
 TEST(ReadLog, RealRtklibImuLogWithUnixTimeAndExtraColumns) {
   LogOptions options;
   options.units = AccelUnits::kG;
-  const Recording r = ReadLog(SharedDataPath("rtklib-walk/imu_1730_sf.csv"), options);
+  const Recording r = ReadLog(RealDataPath("rtklib-walk/imu_1730_sf.csv"), options);
   EXPECT_EQ(r.time_s[0], 1756402240.9610000);
   EXPECT_EQ(r.accel[0], Eigen::Vector3d(-0.0170050, -0.0070006, 1.0109805));
   // ~167 Hz over 134 s or more.

@@ -113,7 +113,7 @@ TEST(CalibrateRecording, RefusesTooFewPositionsAndSaysWhatToRecord) {
   EXPECT_THAT(r.warnings, ::testing::Contains(HasSubstr("no redundancy")));
 }
 
-// --- The real recordings in ../shared/data -------------------------------
+// --- The real recordings in tests/data/real/ -----------------------------
 
 // An independent fit of the same model to the same position means: plain
 // unweighted Gauss-Newton on |a_k| − g with numeric derivatives (no Ceres, no
@@ -148,7 +148,7 @@ TEST(RealRecordings, XsensRawCountsCalibrateAsWellAsImuTk) {
   LogOptions log;
   log.units = AccelUnits::kCounts;
   const Recording rec =
-      ReadLog(testing::SharedDataPath("xsens-multiposition/xsens_acc.mat"), log);
+      ReadLog(testing::RealDataPath("xsens-multiposition/xsens_acc.mat"), log);
   CalibrateOptions options;
   options.solve.gravity_mps2 = 9.81744;  // the recording's local gravity
   const CalibrateResult r = CalibrateRecording(rec, options);
@@ -166,7 +166,7 @@ TEST(RealRecordings, FerrarisSixPosesCalibrateWithTheSixParameterModelOnly) {
   LogOptions log;
   log.rate_hz = 102.4;
   const Recording rec =
-      ReadLog(testing::SharedDataPath("imucal-ferraris/example_ferraris_session.csv"), log);
+      ReadLog(testing::RealDataPath("imucal-ferraris/example_ferraris_session.csv"), log);
   try {
     CalibrateRecording(rec, CalibrateOptions{});
     FAIL() << "the 9-parameter model must be refused on six poses";

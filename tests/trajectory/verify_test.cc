@@ -275,8 +275,8 @@ TEST(VerifyRealWalk, RtklibWalkRunsEndToEnd) {
   log.columns = "t=0,ax=1,ay=2,az=3,gx=4,gy=5,gz=6";
   log.units = AccelUnits::kG;
   const Recording imu =
-      ReadLog(testing::SharedDataPath("rtklib-walk/imu_1730_sf.csv"), log);
-  const GnssTrack ref = ReadGnss(testing::SharedDataPath("rtklib-walk/gnss_1730_sf.pos"));
+      ReadLog(testing::RealDataPath("rtklib-walk/imu_1730_sf.csv"), log);
+  const GnssTrack ref = ReadGnss(testing::RealDataPath("rtklib-walk/gnss_1730_sf.pos"));
   VerifyOptions v;
   v.integrate.gravity_mps2 = 9.7968;  // normal gravity at 40.1° N, 1601 m
   const VerifyResult r = Verify(imu, ref, std::nullopt, v);
