@@ -5,7 +5,7 @@ BUILD      ?= build
 JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure build demo test bench fuzz test-sanitize install clean format
+.PHONY: all deps configure build demo test bench fuzz test-sanitize install clean format readme
 
 all: build
 
@@ -44,6 +44,11 @@ test-sanitize: deps
 	cmake --build build-sanitize -j $(JOBS)
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --test-dir build-sanitize --output-on-failure -j $(JOBS)
+
+# Reruns every command shown in README.md and writes what it prints today
+# into the README (CI checks the same with --check).
+readme: build
+	python3 scripts/readme_run.py --update --build $(BUILD)
 
 install: build
 	cmake --install $(BUILD)
