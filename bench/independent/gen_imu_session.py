@@ -415,7 +415,7 @@ def static_truth(sim, s):
     up = so3.rotate_inv(sim['q'][sl], np.tile([0.0, 0.0, 1.0], (i1 - i0 + 1, 1))).mean(axis=0)
     pos = sim['positions'][s['k']]
     return {'index': s['k'], 'start_s': i0 / sim['rate'], 'end_s': i1 / sim['rate'],
-            'samples': i1 - i0 + 1,
+            'mid_s': (i0 + i1) / 2 / sim['rate'], 'samples': i1 - i0 + 1,
             'target_up_body': pos['target'], 'target_kind': pos['kind'],
             'q_world_body_start': list(sim['q'][i0]), 'q_world_body_end': list(sim['q'][i1]),
             'up_body_mean': list(up / np.linalg.norm(up)),
@@ -498,17 +498,17 @@ def check(sim, out_dir, truth):
 
 
 def parse_args(argv):
-    ap = argparse.ArgumentParser(
-        description='Hand-held multi-position IMU session (accelerometer + gyroscope) with its truth.',
-        epilog='example: gen_imu_session.py --out /tmp/s1 --seed 1 --gyro-units dps --check   '
-               '(writes /tmp/s1/session.csv and /tmp/s1/truth.json; conventions: see the top of this file)')
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument('--out', required=True, help='output directory (created)')
     ap.add_argument('--seed', type=int, required=True, help='random seed; same seed, same files')
     ap.add_argument('--positions', type=int, help='static positions, initial rest included (default 26-40)')
     ap.add_argument('--rate', type=float, default=200.0, help='sample rate in Hz (default 200)')
-    ap.add_argument('--accel-units', choices=['mps2', 'g', 'counts'], default='mps2')
-    ap.add_argument('--gyro-units', choices=['rads', 'dps', 'counts'], default='rads')
-    ap.add_argument('--earth-rate', choices=['on', 'off'], default='on')
+    ap.add_argument('--accel-units', choices=['mps2', 'g', 'counts'], default='mps2',
+                    help='accelerometer columns: m/s^2, g or int16 counts at 8192 per g (default mps2)')
+    ap.add_argument('--gyro-units', choices=['rads', 'dps', 'counts'], default='rads',
+                    help='gyroscope columns: rad/s, deg/s or int16 counts at 16.4 per deg/s (default rads)')
+    ap.add_argument('--earth-rate', choices=['on', 'off'], default='on',
+                    help='add the Earth rate to the gyroscope (default on)')
     ap.add_argument('--latitude', type=float, help='latitude in deg for the Earth rate (default: drawn)')
     ap.add_argument('--lever-arm', type=float, default=0.05,
                     help='distance in m of the sensor from the centre of rotation (default 0.05; 0 = none)')
