@@ -107,6 +107,7 @@ from _numpy import need_numpy  # noqa: E402
 
 need_numpy()
 import numpy as np  # noqa: E402
+import imu_check  # noqa: E402
 import so3  # noqa: E402
 
 G_STD = 9.80665
@@ -370,7 +371,7 @@ def simulate(args):
     y_gyro = g_clean + rng.standard_normal(g_clean.shape) * gyro_p['sigma_per_sample_radps']
     sim = dict(rate=rate, gravity=gravity, acc=acc_p, gyro=gyro_p, omega_e=omega_e, latitude=latitude,
                lever=lever, positions=positions, segs=segs, motion=motion, t=t, q=q, w=w,
-               f_body=f_body, bias=bias, y_acc=y_acc, y_gyro=y_gyro, g_clean=g_clean)
+               f_body=f_body, w_ib=w_ib, bias=bias, y_acc=y_acc, y_gyro=y_gyro, g_clean=g_clean)
     return sim
 
 
@@ -490,13 +491,6 @@ def to_plain(x):
     return x
 
 
-# ---------------------------------------------------------------- check
-def check(sim, out_dir, truth):
-    """The three self-checks of the module docstring; returns True when all pass."""
-    import imu_check
-    return imu_check.run(sim, out_dir, truth)
-
-
 def parse_args(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument('--out', required=True, help='output directory (created)')
@@ -526,8 +520,8 @@ def parse_args(argv):
     return a
 
 
-def main(argv=None):
-    args = parse_args(argv)
+def generate(args):
+    """Writes session.csv and truth.json; returns (the simulation, the truth)."""
     os.makedirs(args.out, exist_ok=True)
     sim = simulate(args)
     acols, afac, afmt, gcols, gfac, gfmt, clipped = encode(sim, args.accel_units, args.gyro_units)
@@ -535,10 +529,16 @@ def main(argv=None):
     truth = to_plain(truth_json(sim, args, afac, gfac, clipped))
     with open(os.path.join(args.out, 'truth.json'), 'w') as f:
         json.dump(truth, f, indent=1)
+    return sim, truth
+
+
+def main(argv=None):
+    args = parse_args(argv)
+    sim, truth = generate(args)
     print(json.dumps({'file': os.path.join(args.out, 'session.csv'), 'rows': len(sim['t']),
                       'positions': len(truth['static_intervals']), 'duration_s': truth['duration_s'],
                       'opts': truth['log']['mpcal_options']}))
-    if args.check and not check(sim, args.out, truth):
+    if args.check and not imu_check.run(sim, args.out, truth):
         return 1
     return 0
 

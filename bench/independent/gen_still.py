@@ -200,8 +200,8 @@ def parse_args(argv):
     return a
 
 
-def main(argv=None):
-    args = parse_args(argv)
+def generate(args):
+    """Writes still.csv and truth.json; returns (truth, the statistics for the check)."""
     os.makedirs(args.out, exist_ok=True)
     rng = np.random.default_rng(args.seed)
     terms = draw_terms(rng, args, args.rate)
@@ -241,6 +241,13 @@ def main(argv=None):
     truth['allan'] = allan
     with open(os.path.join(args.out, 'truth.json'), 'w') as f:
         json.dump(truth, f, indent=1)
+    return truth, stats
+
+
+def main(argv=None):
+    args = parse_args(argv)
+    truth, stats = generate(args)
+    n_total, duration = truth['samples'], truth['duration_s']
     print(json.dumps({'file': os.path.join(args.out, 'still.csv'), 'rows': n_total, 'duration_s': duration}))
     if args.check and not still_check.run(stats, truth, args.out):
         return 1
