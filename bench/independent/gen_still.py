@@ -15,7 +15,7 @@ analysis on data its authors did not make.
 writes DIR/still.csv (header t,ax,ay,az,gx,gy,gz; t in s) and
 DIR/truth.json; the same arguments always give the same files.  The rows are
 written as they are made (numpy chunks of about 2^18 samples), so memory does
-not grow with H: 8 h at 400 Hz is 11.5 M rows, about 0.8 GB.  Example:
+not grow with H: 8 h at 400 Hz is 11.5 M rows, about 0.94 GB.  Example:
 
   gen_still.py --out /tmp/still --hours 2 --rate 200 --seed 3 --check
 
