@@ -534,7 +534,11 @@ def generate(args):
 
 def main(argv=None):
     args = parse_args(argv)
-    sim, truth = generate(args)
+    try:
+        sim, truth = generate(args)
+    except OSError as e:
+        sys.exit('%s: error: cannot write %s: %s; give a writable --out directory'
+                 % (os.path.basename(sys.argv[0]), args.out, e.strerror or e))
     print(json.dumps({'file': os.path.join(args.out, 'session.csv'), 'rows': len(sim['t']),
                       'positions': len(truth['static_intervals']), 'duration_s': truth['duration_s'],
                       'opts': truth['log']['mpcal_options']}))

@@ -246,7 +246,11 @@ def generate(args):
 
 def main(argv=None):
     args = parse_args(argv)
-    truth, stats = generate(args)
+    try:
+        truth, stats = generate(args)
+    except OSError as e:
+        sys.exit('%s: error: cannot write %s: %s; give a writable --out directory'
+                 % (os.path.basename(sys.argv[0]), args.out, e.strerror or e))
     n_total, duration = truth['samples'], truth['duration_s']
     print(json.dumps({'file': os.path.join(args.out, 'still.csv'), 'rows': n_total, 'duration_s': duration}))
     if args.check and not still_check.run(stats, truth, args.out):
