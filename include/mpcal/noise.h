@@ -52,6 +52,7 @@
 
 #include <Eigen/Core>
 
+#include "mpcal/calibration.h"
 #include "mpcal/detect.h"
 #include "mpcal/recording.h"
 
@@ -264,5 +265,15 @@ NoiseResult AnalyseNoise(Recording&& recording,
                          const NoiseSegment& segment,
                          double accel_mps2_per_unit,
                          const NoiseOptions& options);
+
+/// The white noise density of each axis (m/s²/√Hz, the N of this file)
+/// from the scatter of the static positions of a calibration: the pooled
+/// within-position variance s² (each position's sample_std_mps2, weighted by
+/// its samples − 1) over its sample rate, N² = s²/f_s. Over positions of a
+/// few seconds it is the white noise, as `AnalyseNoise` finds it at short τ
+/// (it includes the little the other terms add over a position). nullopt
+/// without a position of at least 2 samples and a positive duration.
+std::optional<Eigen::Vector3d> WhiteNoiseFromPositions(
+    const std::vector<PositionSummary>& positions);
 
 }  // namespace mpcal

@@ -83,6 +83,22 @@ std::optional<NoiseSegment> ChooseNoiseSegment(const Recording& recording,
   return s;
 }
 
+std::optional<Eigen::Vector3d> WhiteNoiseFromPositions(
+    const std::vector<PositionSummary>& positions) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double dof = 0.0;
+  for (const PositionSummary& p : positions) {
+    if (p.samples < 2 || !(p.end_s > p.start_s)) continue;
+    // Samples n over [start, end] are n − 1 periods apart.
+    const double rate_hz = static_cast<double>(p.samples - 1) / (p.end_s - p.start_s);
+    const double w = static_cast<double>(p.samples - 1);
+    sum += w * p.sample_std_mps2.cwiseAbs2() / rate_hz;
+    dof += w;
+  }
+  if (dof <= 0.0) return std::nullopt;
+  return (sum / dof).cwiseSqrt();
+}
+
 NoiseResult AnalyseNoise(Recording&& recording,
                          const NoiseSegment& segment,
                          double accel_mps2_per_unit,
