@@ -19,7 +19,8 @@ TEST(WhiteNoiseFromPositions, AgreesWithTheAllanAnalysisOfTheSameSession) {
   o.initial_rest_s = 120.0;  // a long still part for the Allan analysis
   const SimulatedSession s = SimulateStatic(o);
   const CalibrateResult cal = CalibrateRecording(s.recording, CalibrateOptions{});
-  const std::optional<Eigen::Vector3d> n = WhiteNoiseFromPositions(cal.calibration.positions);
+  const std::optional<Eigen::Vector3d> n =
+      WhiteNoiseFromPositions(cal.calibration.positions);
   ASSERT_TRUE(n.has_value());
 
   Recording rec = s.recording;

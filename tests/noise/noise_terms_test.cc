@@ -64,7 +64,9 @@ TEST(NoiseTerms, ConsumerTwoHoursRecoversNBAndK) {
         EXPECT_TRUE(k.record_needed_s.has_value());
       }
       // B shows only where it rises above N and K (accelerometer x here).
-      if (sensor == 0 && axis == 0) ASSERT_EQ(b.status, TermStatus::kMeasured);
+      if (sensor == 0 && axis == 0) {
+        ASSERT_EQ(b.status, TermStatus::kMeasured);
+      }
       if (b.value) {
         EXPECT_NEAR(*b.value / truth[axis].bias_instability, 1.0, 0.35) << sensor << axis;
       } else {
@@ -114,7 +116,9 @@ TEST(NoiseTerms, FlickerApproximationIsFlatAtPoint664B) {
         ++count;
         inside += p.adev_lo <= truth && truth <= p.adev_hi;
       }
-      if (p.tau_s < 0.02 * o.duration_s) EXPECT_NEAR(p.adev / truth, 1.0, 0.1) << p.tau_s;
+      if (p.tau_s < 0.02 * o.duration_s) {
+        EXPECT_NEAR(p.adev / truth, 1.0, 0.1) << p.tau_s;
+      }
     }
     EXPECT_GE(inside, 0.6 * count);  // neighbouring points are correlated
     ASSERT_TRUE(ax.term(NoiseTerm::kBiasInstability).value.has_value());
