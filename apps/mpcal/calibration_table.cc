@@ -5,6 +5,9 @@
 
 #include <fmt/format.h>
 
+#include "mpcal/noise.h"
+#include "mpcal/noise_units.h"
+
 namespace mpcal::cli {
 namespace {
 
@@ -85,6 +88,13 @@ std::string FormatFitSummary(const CalibrateResult& result) {
                        s.position_scatter_mps2);
   }
   out += "\n";
+  if (const auto n = WhiteNoiseFromPositions(result.calibration.positions)) {
+    out += fmt::format("white noise (scatter within the positions): x {:.3g}, y {:.3g}, z {:.3g} "
+                       "m/s2/√Hz ({:.0f}, {:.0f}, {:.0f} µg/√Hz; 'mpcal noise' on a still "
+                       "recording for all the terms)\n",
+                       n->x(), n->y(), n->z(), noise_units::MicroGPerRtHz(n->x()),
+                       noise_units::MicroGPerRtHz(n->y()), noise_units::MicroGPerRtHz(n->z()));
+  }
   if (!s.converged()) out += fmt::format("solver: {}\n", s.message);
   return out;
 }

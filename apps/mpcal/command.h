@@ -21,7 +21,10 @@ void AddVerifyCommand(CLI::App& root);
 void AddSimulateCommand(CLI::App& root);
 /// `simulate walk`, added under the `simulate` parent by AddSimulateCommand.
 void AddSimulateWalkCommand(CLI::App& simulate);
+/// `simulate noise`, likewise (simulate_noise_command.cc).
+void AddSimulateNoiseCommand(CLI::App& simulate);
 void AddReportCommand(CLI::App& root);
 void AddDemoCommand(CLI::App& root);
+void AddNoiseCommand(CLI::App& root);
 
 }  // namespace mpcal::cli

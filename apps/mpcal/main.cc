@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
   mpcal::cli::AddSimulateCommand(app);
   mpcal::cli::AddReportCommand(app);
   mpcal::cli::AddDemoCommand(app);
+  mpcal::cli::AddNoiseCommand(app);
 
   // Bare `mpcal`: the help, then the error; an unknown word: say so. (CLI11
   // says "A subcommand is required" to both.)

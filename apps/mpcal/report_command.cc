@@ -43,23 +43,25 @@ std::string CommandLine(const ReportFlags& f) {
   add("--repeat", f.files.repeatability);
   add("--verify", f.files.verification);
   add("--verify-trajectories", f.files.verification_trajectories);
+  add("--noise", f.files.noise);
   add("-o", f.output);
   return line;
 }
 
 void Run(const ReportFlags& f) {
   if (f.files.calibration.empty() && f.files.session.empty() &&
-      f.files.repeatability.empty() && f.files.verification.empty()) {
+      f.files.repeatability.empty() && f.files.verification.empty() &&
+      f.files.noise.empty()) {
     throw Error(
         "nothing to report: give at least one of --calib, --session, --repeat, "
-        "--verify");
+        "--verify, --noise");
   }
   if (!f.files.verification_trajectories.empty() && f.files.verification.empty()) {
     throw Error("--verify-trajectories needs --verify (the result they belong to)");
   }
   ThrowIfInvalid(f.files.Validate(), "mpcal report");
   CheckOutput(f.output, {f.files.calibration, f.files.session, f.files.repeatability,
-                         f.files.verification});
+                         f.files.verification, f.files.noise});
   ReportInputs inputs = LoadReportInputs(f.files);
   inputs.command_line = CommandLine(f);
   WriteReport(f.output, inputs);
@@ -69,6 +71,7 @@ void Run(const ReportFlags& f) {
   if (inputs.session) sections.emplace_back("session");
   if (inputs.repeatability) sections.emplace_back("repeatability");
   if (inputs.verification) sections.emplace_back("verification");
+  if (inputs.noise) sections.emplace_back("noise");
   fmt::print("wrote {} ({})\n", f.output, fmt::join(sections, ", "));
 }
 
@@ -97,6 +100,9 @@ void AddReportCommand(CLI::App& root) {
                   f->files.verification_trajectories,
                   "PREFIX given to 'mpcal verify --trajectory-csv': plots "
                   "PREFIX-reference.csv, PREFIX-raw.csv, PREFIX-corrected.csv");
+  cmd->add_option("--noise", f->files.noise,
+                  "Noise analysis from 'mpcal noise --json': Allan deviation of each axis "
+                  "with its band and fitted terms, the terms table");
   cmd->add_option(
          "-o,--output", f->output, "The HTML file to write ('-': standard output)")
       ->required();
@@ -107,7 +113,8 @@ void AddReportCommand(CLI::App& root) {
       "  mpcal calibrate s.csv -o c.json\n"
       "  mpcal report --calib c.json --session s.csv -o report.html\n"
       "  mpcal report --calib c.json --repeat rep.json --verify result.json "
-      "--verify-trajectories walk -o report.html");
+      "--verify-trajectories walk -o report.html\n"
+      "  mpcal report --noise noise.json -o noise.html");
   cmd->callback([f] { Run(*f); });
 }
 

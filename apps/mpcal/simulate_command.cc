@@ -361,6 +361,8 @@ void AddSimulateCommand(CLI::App& root) {
   AddSimulateStaticCommand(*simulate);
   // `simulate walk` lives in simulate_walk_command.cc.
   AddSimulateWalkCommand(*simulate);
+  // `simulate noise` lives in simulate_noise_command.cc.
+  AddSimulateNoiseCommand(*simulate);
 }
 
 }  // namespace mpcal::cli

@@ -18,6 +18,7 @@
 #include "mpcal/detect.h"
 #include "mpcal/log_reader.h"
 #include "mpcal/model.h"
+#include "mpcal/noise_file.h"
 #include "mpcal/recording.h"
 #include "mpcal/repeat.h"
 #include "mpcal/verify.h"
@@ -88,6 +89,8 @@ struct ReportInputs {
   /// per-trial 1σ: the spread is then shown in the parameters' units).
   std::optional<RepeatabilityResult> repeatability;
   std::optional<VerificationSummary> verification;
+  /// From `mpcal noise --json` (ReadNoiseFile).
+  std::optional<NoiseFile> noise;
   /// Input files as (role, path), listed in the header.
   std::vector<std::pair<std::string, std::string>> input_files;
   /// The command that made the report (shown so it can be reproduced).
@@ -117,6 +120,7 @@ struct ReportFiles {
   /// writes them: PREFIX-reference.csv, PREFIX-raw.csv and (optional)
   /// PREFIX-corrected.csv. Overrides files the result names.
   std::string verification_trajectories;
+  std::string noise;  ///< "mpcal.noise/1" JSON from the noise analysis
 
   /// Empty when valid, else names the first bad field.
   std::string Validate() const;

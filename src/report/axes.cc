@@ -60,6 +60,33 @@ std::string FormatTick(double v, double step) {
   return fmt::format("{:.{}f}", v, decimals);
 }
 
+namespace {
+
+std::string TickLabel(const Ticks& t, std::size_t i) {
+  return i < t.labels.size() ? t.labels[i] : FormatTick(t.values[i], t.step);
+}
+
+}  // namespace
+
+Ticks DecadeTicks(Interval r) {
+  static const char* const kSuperscript[] = {"\u2070", "\u00b9", "\u00b2", "\u00b3",
+                                             "\u2074", "\u2075", "\u2076", "\u2077",
+                                             "\u2078", "\u2079"};
+  Ticks t;
+  t.step = 1.0;
+  t.range = {std::floor(r.lo + 1e-9), std::ceil(r.hi - 1e-9)};
+  if (t.range.hi <= t.range.lo) t.range.hi = t.range.lo + 1.0;
+  for (double d = t.range.lo; d <= t.range.hi + 1e-9; d += 1.0) {
+    t.values.push_back(d);
+    const int n = static_cast<int>(std::lround(d));
+    std::string label = "10";
+    if (n < 0) label += "\u207b";
+    for (const char c : std::to_string(std::abs(n))) label += kSuperscript[c - '0'];
+    t.labels.push_back(label);
+  }
+  return t;
+}
+
 void DrawAxes(Svg& svg,
               const PlotArea& area,
               const Ticks& x_ticks,
@@ -68,17 +95,18 @@ void DrawAxes(Svg& svg,
               const LinearScale& y,
               const AxisLabels& labels) {
   svg.OpenGroup("axes");
+  std::size_t i_x = 0, i_y = 0;
   for (double v : x_ticks.values) {
     const double px = x(v);
     svg.Line(px, area.top, px, area.bottom(), "grid");
     svg.Line(px, area.bottom(), px, area.bottom() + 4, "tick");
-    svg.Text(px, area.bottom() + 17, FormatTick(v, x_ticks.step), "tick-label", "middle");
+    svg.Text(px, area.bottom() + 17, TickLabel(x_ticks, i_x++), "tick-label", "middle");
   }
   for (double v : y_ticks.values) {
     const double py = y(v);
     svg.Line(area.left, py, area.right(), py, "grid");
     svg.Line(area.left - 4, py, area.left, py, "tick");
-    svg.Text(area.left - 7, py + 4, FormatTick(v, y_ticks.step), "tick-label", "end");
+    svg.Text(area.left - 7, py + 4, TickLabel(y_ticks, i_y++), "tick-label", "end");
   }
   svg.Rect(area.left, area.top, area.width, area.height, "frame");
   svg.Text(

@@ -28,7 +28,13 @@ struct Ticks {
   std::vector<double> values;
   double step = 1.0;
   Interval range;
+  /// When not empty, shown instead of the values (log axes: "10⁻³").
+  std::vector<std::string> labels;
 };
+
+/// Ticks of a log axis drawn on log10 of the data: one per decade of `r`
+/// (in decades), labelled 10ⁿ, `r` extended to whole decades.
+Ticks DecadeTicks(Interval r);
 Ticks NiceTicks(Interval r, int target);
 
 /// Tick label with as many decimals as the step needs (no "0.30000001").

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mpcal::report {
 
@@ -22,9 +23,50 @@ Ticks TicksInside(Interval r, double step) {
   return t;
 }
 
+// log10 of every value (non-positive values become NaN and are skipped).
+std::vector<double> Log10(const std::vector<double>& v) {
+  std::vector<double> out(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    out[i] = v[i] > 0.0 ? std::log10(v[i]) : std::numeric_limits<double>::quiet_NaN();
+  }
+  return out;
+}
+
+// The spec with its data on log10 scales where asked: the plot is then drawn
+// linearly and only the ticks know it was logarithmic.
+LinePlotSpec ToLogScales(const LinePlotSpec& in) {
+  LinePlotSpec s = in;
+  const auto lx = [&](const std::vector<double>& v) { return in.log_x ? Log10(v) : v; };
+  const auto ly = [&](const std::vector<double>& v) { return in.log_y ? Log10(v) : v; };
+  const auto one = [](bool log, double v) { return log ? std::log10(v) : v; };
+  for (Series& series : s.series) {
+    series.x = lx(series.x);
+    series.y = ly(series.y);
+  }
+  for (FillBetween& f : s.fills) {
+    f.x = lx(f.x);
+    f.lo = ly(f.lo);
+    f.hi = ly(f.hi);
+  }
+  for (Band& b : s.bands) {
+    b.x0 = one(in.log_x, b.x0);
+    b.x1 = one(in.log_x, b.x1);
+  }
+  for (Annotation& a : s.annotations) {
+    a.x = one(in.log_x, a.x);
+    a.y = one(in.log_y, a.y);
+  }
+  if (s.y_reference) s.y_reference = one(in.log_y, *s.y_reference);
+  if (s.y_include) s.y_include = Interval{one(in.log_y, s.y_include->lo), one(in.log_y, s.y_include->hi)};
+  return s;
+}
+
 }  // namespace
 
-std::string LinePlot(const LinePlotSpec& spec) {
+std::string LinePlot(const LinePlotSpec& original) {
+  const LinePlotSpec log_spec =
+      original.log_x || original.log_y ? ToLogScales(original) : LinePlotSpec{};
+  const LinePlotSpec& spec = original.log_x || original.log_y ? log_spec : original;
   std::vector<LegendEntry> legend;
   for (const Series& s : spec.series) {
     if (s.name.empty()) continue;
@@ -54,6 +96,11 @@ std::string LinePlot(const LinePlotSpec& spec) {
   for (const Annotation& a : spec.annotations) {
     xs.push_back(a.x);
     ys.push_back(a.y);
+  }
+  for (const FillBetween& f : spec.fills) {
+    xs.insert(xs.end(), f.x.begin(), f.x.end());
+    ys.insert(ys.end(), f.lo.begin(), f.lo.end());
+    ys.insert(ys.end(), f.hi.begin(), f.hi.end());
   }
   if (spec.y_reference) ys.push_back(*spec.y_reference);
   if (spec.y_include) {
@@ -85,6 +132,8 @@ std::string LinePlot(const LinePlotSpec& spec) {
     if (yr.lo >= 0 && padded.lo < 0) padded.lo = 0;
     if (yr.hi <= 0 && padded.hi > 0) padded.hi = 0;
     yt = NiceTicks(padded, 5);
+    if (spec.log_x) xt = DecadeTicks(xr);
+    if (spec.log_y) yt = DecadeTicks(yr);
     xr = xt.range;
     yr = yt.range;
   }
@@ -100,6 +149,20 @@ std::string LinePlot(const LinePlotSpec& spec) {
     if (!b.label.empty() && x1 - x0 >= 6.0 * static_cast<double>(b.label.size()) + 2) {
       svg.Text((x0 + x1) / 2, area.top + 11, b.label, "band-label", "middle");
     }
+  }
+  for (const FillBetween& f : spec.fills) {
+    std::vector<double> px, py;
+    for (std::size_t i = 0; i < f.x.size(); ++i) {
+      if (!std::isfinite(f.x[i]) || !std::isfinite(f.hi[i])) continue;
+      px.push_back(x(f.x[i]));
+      py.push_back(y(std::min(f.hi[i], yr.hi)));
+    }
+    for (std::size_t i = f.x.size(); i-- > 0;) {
+      if (!std::isfinite(f.x[i]) || !std::isfinite(f.lo[i])) continue;
+      px.push_back(x(f.x[i]));
+      py.push_back(y(std::max(f.lo[i], yr.lo)));
+    }
+    svg.Polygon(px, py, f.css_class);
   }
   DrawAxes(svg, area, xt, yt, x, y, spec.axes);
   if (spec.y_reference) {

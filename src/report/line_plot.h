@@ -38,6 +38,14 @@ struct Annotation {
   double size = 11.0;
 };
 
+/// A shaded band between two curves over the same x (a confidence band).
+struct FillBetween {
+  std::vector<double> x;
+  std::vector<double> lo;
+  std::vector<double> hi;
+  std::string css_class = "band";
+};
+
 struct LinePlotSpec {
   std::string aria_label;
   AxisLabels axes;
@@ -54,6 +62,12 @@ struct LinePlotSpec {
   std::optional<double> y_reference;
   /// Forces y to include this range.
   std::optional<Interval> y_include;
+  /// Logarithmic axes (positive data only; ticks at each decade). Bands,
+  /// the reference line and y_include are then in data units too.
+  bool log_x = false;
+  bool log_y = false;
+  /// Shaded bands, drawn under the series.
+  std::vector<FillBetween> fills;
 };
 
 /// The <svg> of the plot.

@@ -35,8 +35,9 @@ std::string RenderReport(const ReportInputs& inputs) {
   }
   if (inputs.repeatability) html += RepeatabilitySection(*inputs.repeatability);
   if (inputs.verification) html += VerificationSection(*inputs.verification);
+  if (inputs.noise) html += NoiseSection(*inputs.noise);
   if (!inputs.calibration && !inputs.session && !inputs.repeatability &&
-      !inputs.verification) {
+      !inputs.verification && !inputs.noise) {
     html += Paragraph("Nothing to report: no input was given.", "note");
   }
   html += "</main>\n";

@@ -206,9 +206,9 @@ VerificationSummary SummarizeVerification(const VerifyResult& r) {
 
 std::string ReportFiles::Validate() const {
   if (calibration.empty() && session.empty() && repeatability.empty() &&
-      verification.empty()) {
+      verification.empty() && noise.empty()) {
     return "no input: give at least one of calibration, session, repeatability, "
-           "verification";
+           "verification, noise";
   }
   if (!verification_trajectories.empty() && verification.empty()) {
     return "verification_trajectories needs verification";
@@ -261,6 +261,10 @@ ReportInputs LoadReportInputs(const ReportFiles& files) {
       in.input_files.emplace_back("Trajectory (" + role + ")", p);
     }
     in.verification = std::move(v);
+  }
+  if (!files.noise.empty()) {
+    in.noise = ReadNoiseFile(files.noise);
+    in.input_files.emplace_back("Noise analysis", files.noise);
   }
   return in;
 }

@@ -25,6 +25,10 @@ std::string SessionSection(const ReportSession& session, const Calibration* cali
 /// The trials table and the spread of each parameter against its 1σ.
 std::string RepeatabilitySection(const RepeatabilityResult& repeatability);
 
+/// The Allan deviation of each axis with its band and fitted terms, and the
+/// terms table (`mpcal noise --json`).
+std::string NoiseSection(const NoiseFile& noise);
+
 /// Start-to-end distances and the paths in east-north metres; error against
 /// time when the paths are given.
 std::string VerificationSection(const VerificationSummary& verification);

@@ -137,6 +137,21 @@ void Svg::Rect(double x,
                        StyleAttr(style));
 }
 
+void Svg::Polygon(const std::vector<double>& x,
+                  const std::vector<double>& y,
+                  std::string_view cls) {
+  assert(x.size() == y.size());
+  if (x.size() < 3) return;
+  std::string points;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (i) points += ' ';
+    points += Coord(x[i]);
+    points += ',';
+    points += Coord(y[i]);
+  }
+  body_ += fmt::format("<polygon points=\"{}\"{}/>\n", points, ClassAttr(cls));
+}
+
 void Svg::Circle(
     double cx, double cy, double r, std::string_view cls, std::string_view style) {
   body_ += fmt::format("<circle cx=\"{}\" cy=\"{}\" r=\"{}\"{}{}/>\n",

@@ -56,6 +56,10 @@ class Svg {
             double h,
             std::string_view cls,
             std::string_view style = "");
+  /// A closed, filled polygon through (x[i], y[i]) (confidence bands).
+  void Polygon(const std::vector<double>& x,
+               const std::vector<double>& y,
+               std::string_view cls);
   void Circle(
       double cx, double cy, double r, std::string_view cls, std::string_view style = "");
   /// `anchor`: start, middle or end; `rotate_deg` about (x, y).

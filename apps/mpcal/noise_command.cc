@@ -1,0 +1,306 @@
+// mpcal noise: the Allan deviation of a still recording, the noise terms it
+// supports (each with its interval), how long to record for those it does
+// not, and the files filters want (JSON, Kalibr's imu.yaml).
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "cli_options.h"
+#include "command.h"
+#include "mpcal/atomic_file.h"
+#include "mpcal/calibrate.h"
+#include "mpcal/detect.h"
+#include "mpcal/error.h"
+#include "mpcal/log_reader.h"
+#include "mpcal/noise.h"
+#include "mpcal/noise_file.h"
+#include "mpcal/noise_units.h"
+#include "progress.h"
+
+namespace mpcal::cli {
+namespace {
+
+struct NoiseFlags {
+  std::string input;
+  std::string json;
+  std::string kalibr;
+  std::string rostopic = "/imu0";
+  bool whole = false;
+  LogOptions log;
+  GravityFlags gravity;
+  CalibrateOptions calibrate;  // for the detection flags
+  NoiseOptions noise;
+};
+
+constexpr NoiseTerm kTableTerms[] = {NoiseTerm::kQuantisation,
+                                     NoiseTerm::kWhiteNoise,
+                                     NoiseTerm::kBiasInstability,
+                                     NoiseTerm::kRandomWalk,
+                                     NoiseTerm::kRateRamp};
+
+const char* TermLabel(NoiseTerm t, bool gyro) {
+  switch (t) {
+    case NoiseTerm::kQuantisation:
+      return "quantisation Q";
+    case NoiseTerm::kWhiteNoise:
+      return gyro ? "white noise N (ARW)" : "white noise N (VRW)";
+    case NoiseTerm::kBiasInstability:
+      return "bias instability B";
+    case NoiseTerm::kRandomWalk:
+      return gyro ? "rate random walk K" : "accel. random walk K";
+    case NoiseTerm::kRateRamp:
+      return "rate ramp R";
+  }
+  return "";
+}
+
+std::string Hours(double s) {
+  return s >= 3600.0 ? fmt::format("{:.1f} h", s / 3600.0)
+                     : fmt::format("{:.0f} min", s / 60.0);
+}
+
+std::string SiCell(const TermEstimate& e) {
+  if (e.value) return fmt::format("{:.4g} [{:.3g}, {:.3g}]", *e.value, e.lo, e.hi);
+  if (e.upper_bound > 0.0) return fmt::format("< {:.3g} (not seen)", e.upper_bound);
+  return "not seen";
+}
+
+std::string DatasheetCell(const TermEstimate& e, NoiseTerm t, bool gyro) {
+  const double v = e.value ? *e.value : e.upper_bound;
+  const noise_units::DatasheetValue d = noise_units::ToDatasheet(t, gyro, v);
+  return fmt::format("{}{:.4g}", e.value ? "" : "< ", d.value);
+}
+
+void PrintSensor(const SensorNoise& s, bool gyro) {
+  fmt::print("\n{:<22} {:<11} {:>30} {:>30} {:>30}\n",
+             gyro ? "gyroscope" : "accelerometer",
+             "unit",
+             "x",
+             "y",
+             "z");
+  for (const NoiseTerm t : kTableTerms) {
+    bool any = false;
+    for (const AxisNoise& a : s.axes) any = any || a.term(t).value.has_value();
+    // Quantisation and rate ramp are shown only where some axis has them.
+    if (!any && (t == NoiseTerm::kQuantisation || t == NoiseTerm::kRateRamp)) continue;
+    fmt::print("{:<22} {:<11}", TermLabel(t, gyro), noise_units::SiUnit(t, gyro));
+    for (const AxisNoise& a : s.axes) fmt::print(" {:>30}", SiCell(a.term(t)));
+    fmt::print("\n");
+    const noise_units::DatasheetValue unit = noise_units::ToDatasheet(t, gyro, 1.0);
+    if (unit.unit[0] == '\0') continue;
+    fmt::print("{:<22} {:<11}", "", unit.unit);
+    for (const AxisNoise& a : s.axes)
+      fmt::print(" {:>30}", DatasheetCell(a.term(t), t, gyro));
+    fmt::print("\n");
+  }
+}
+
+// The findings in words: terms not measured, why, and how long to record.
+void PrintFindings(const SensorNoise& s, bool gyro, const NoiseResult& r) {
+  const char* sensor = gyro ? "gyroscope" : "accelerometer";
+  for (const NoiseTerm t :
+       {NoiseTerm::kWhiteNoise, NoiseTerm::kBiasInstability, NoiseTerm::kRandomWalk}) {
+    std::vector<std::string> not_seen, masked;
+    double needed = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const TermEstimate& e = s.axes[i].term(t);
+      const std::string axis(1, static_cast<char>('x' + i));
+      if (e.status == TermStatus::kMasked) masked.push_back(axis);
+      if (e.status == TermStatus::kNotSeen) {
+        not_seen.push_back(axis);
+        if (e.record_needed_s) needed = std::max(needed, *e.record_needed_s);
+      }
+    }
+    const std::string name = TermLabel(t, gyro);
+    if (!not_seen.empty()) {
+      fmt::print(
+          "{} {} on {}: not measured — no stretch of the curve where it dominates in "
+          "this {} record; the bound is its largest value the curve allows.",
+          sensor,
+          name,
+          fmt::join(not_seen, ", "),
+          Hours(r.record_s));
+      if (needed > 0.0) {
+        fmt::print(
+            " To measure it, record at least {} (longer if it is below the bound).",
+            Hours(needed));
+      }
+      fmt::print("\n");
+    }
+    if (!masked.empty()) {
+      fmt::print(
+          "{} {} on {}: below the curve where its neighbours meet; a longer record "
+          "will not show it (the bound stands).\n",
+          sensor,
+          name,
+          fmt::join(masked, ", "));
+    }
+  }
+}
+
+void Run(NoiseFlags& f) {
+  ThrowIfInvalid(f.noise.Validate(), "noise");
+  ThrowIfInvalid(f.calibrate.detect.Validate(), "noise");
+  if (!f.json.empty()) CheckOutput(f.json, {f.input});
+  if (!f.kalibr.empty()) CheckOutput(f.kalibr, {f.input, f.json});
+  if (f.log.units == AccelUnits::kCounts) {
+    throw Error(
+        "noise needs the readings in physical units: give --units mps2 or g (in "
+        "counts, calibrate first and convert with 'mpcal apply')");
+  }
+
+  TerminalProgress progress("reading " + f.input);
+  f.log.progress = progress.Callback();
+  Recording rec = ReadLog(f.input, f.log);
+  progress.Done();
+  CheckUnits(rec, f.gravity.Resolve());
+  const bool has_gyro = rec.gyro_radps.size() == rec.size();
+  if (!f.kalibr.empty() && !has_gyro) {
+    throw Error(f.input +
+                ": Kalibr's imu.yaml needs the gyroscope, and the log has none "
+                "(give its columns with --columns ...,gx=..,gy=..,gz=..)");
+  }
+  const std::size_t rows = rec.size();
+  const double span_s = rec.time_s.back() - rec.time_s.front();
+  for (const auto& w : rec.warnings) fmt::print("  note: {}\n", w);
+
+  std::optional<NoiseSegment> segment;
+  if (f.whole) {
+    segment = NoiseSegment{NoiseSegmentKind::kWholeRecord, 0, rows, 0};
+  } else {
+    const DetectResult det = DetectStatic(rec, f.calibrate.detect);
+    segment = ChooseNoiseSegment(rec, det);
+    if (!segment) {
+      throw Error(
+          fmt::format("{}: no still part found in {:.1f} s ({}); if the sensor was "
+                      "still, give --whole to analyse all of it",
+                      f.input,
+                      span_s,
+                      det.message));
+    }
+  }
+  const double mps2_per_unit = *FixedMps2PerUnit(rec.units);
+  TerminalProgress analysing("analysing");
+  const NoiseResult r = AnalyseNoise(std::move(rec), *segment, mps2_per_unit, f.noise);
+  analysing.Done();
+
+  fmt::print("{}: {} rows, {:.2f} h at {:.6g} Hz{}\n",
+             f.input,
+             rows,
+             span_s / 3600.0,
+             r.rate_hz,
+             has_gyro ? ", accelerometer and gyroscope" : ", accelerometer");
+  const std::string which =
+      f.whole ? "the whole record (--whole: detection not run)"
+      : segment->kind == NoiseSegmentKind::kWholeRecord
+          ? "the whole record (detection found the sensor still throughout)"
+          : fmt::format(
+                "the longest still part, {:.1f}-{:.1f} s, of {} found by detection "
+                "(the sensor moved)",
+                static_cast<double>(segment->begin) * r.sample_period_s,
+                static_cast<double>(segment->end) * r.sample_period_s,
+                segment->static_intervals);
+  fmt::print("analysed: {}: {} samples, {}\n", which, r.samples, Hours(r.record_s));
+  if (r.gaps > 0) {
+    fmt::print(
+        "  note: {} gaps in time (samples lost); they are treated as evenly spaced\n",
+        r.gaps);
+  }
+  const std::vector<AllanPoint>& c = r.accel_mps2.axes[0].curve;
+  fmt::print(
+      "Allan deviation: overlapping, {} cluster times per axis from {:.3g} s to {:.4g} s "
+      "(a quarter of the record), {} per octave; intervals {:.0f} %\n",
+      c.size(),
+      c.front().tau_s,
+      c.back().tau_s,
+      f.noise.allan.points_per_octave,
+      100.0 * f.noise.allan.confidence);
+  PrintSensor(r.accel_mps2, false);
+  if (r.gyro_radps) PrintSensor(*r.gyro_radps, true);
+  fmt::print(
+      "\nvalue [interval]; '< bound (not seen)': not measured, the largest value the "
+      "record allows. Densities are continuous-time: per sample σ = N·√rate.\n");
+  PrintFindings(r.accel_mps2, false, r);
+  if (r.gyro_radps) PrintFindings(*r.gyro_radps, true, r);
+
+  if (!f.json.empty()) {
+    WriteFileAtomically(f.json, NoiseJson(r, f.input, f.noise.allan.confidence));
+    fmt::print("wrote {}\n", f.json);
+  }
+  if (!f.kalibr.empty()) {
+    const KalibrFile k = KalibrYaml(r, f.input, f.rostopic);
+    WriteFileAtomically(f.kalibr, k.text);
+    for (const auto& [name, v] :
+         {std::pair{"accelerometer_random_walk", k.accel_random_walk},
+          std::pair{"gyroscope_random_walk", k.gyro_random_walk},
+          std::pair{"accelerometer_noise_density", k.accel_noise_density},
+          std::pair{"gyroscope_noise_density", k.gyro_noise_density}}) {
+      if (!v.upper_bound) continue;
+      fmt::print(
+          stderr,
+          "mpcal: warning: {}: {} was not measured; the file has its upper bound {:.4g} "
+          "(labelled in a comment){}\n",
+          f.kalibr,
+          name,
+          v.value,
+          v.record_needed_s ? fmt::format("; record at least {} to measure it",
+                                          Hours(*v.record_needed_s))
+                            : "");
+    }
+    fmt::print("wrote {} (Kalibr IMU model: the largest axis of each sensor)\n",
+               f.kalibr);
+  }
+}
+
+}  // namespace
+
+void AddNoiseCommand(CLI::App& root) {
+  auto f = std::make_shared<NoiseFlags>();
+  CLI::App* app = root.add_subcommand(
+      "noise",
+      "Noise of a still IMU: overlapping Allan deviation with confidence intervals, the "
+      "white noise, bias instability and random walk it shows (and how long to record "
+      "for "
+      "those it does not), JSON and Kalibr's imu.yaml");
+  app->add_option("INPUT", f->input, "Log: CSV or text, '-' for standard input")
+      ->required();
+  app->add_option("--json", f->json, "Write the curves and terms (mpcal.noise/1)");
+  app->add_option("--kalibr",
+                  f->kalibr,
+                  "Write Kalibr's IMU noise file (imu.yaml) from the measured values");
+  app->add_option("--rostopic", f->rostopic, "The rostopic written in the Kalibr file")
+      ->capture_default_str();
+  app->add_flag(
+      "--whole",
+      f->whole,
+      "Analyse every sample without detecting motion (default: the whole record "
+      "when it is still throughout, else its longest still part)");
+  app->add_option("--points-per-octave",
+                  f->noise.allan.points_per_octave,
+                  "Cluster times per factor of two")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 64.0))
+      ->group("Allan deviation");
+  app->add_option("--confidence",
+                  f->noise.allan.confidence,
+                  "Confidence level of the intervals (curve and terms)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.5, 0.999))
+      ->group("Allan deviation");
+  AddLogOptions(*app, f->log);
+  AddGravityOptions(*app, f->gravity);
+  AddCalibrateOptions(*app, f->calibrate);
+  app->footer(
+      "Examples:\n"
+      "  mpcal simulate noise --hours 2 --rate 200 -o still.csv --truth truth.json\n"
+      "  mpcal noise still.csv --json noise.json --kalibr imu.yaml\n"
+      "  mpcal noise imu.csv --columns t=0,ax=1,ay=2,az=3,gx=4,gy=5,gz=6 --units g\n"
+      "  mpcal report --noise noise.json -o report.html");
+  app->callback([f] { Run(*f); });
+}
+
+}  // namespace mpcal::cli

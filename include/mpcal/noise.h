@@ -1,0 +1,279 @@
+/// \file noise.h
+/// \brief Noise of a still inertial sensor: overlapping Allan deviation with
+/// confidence intervals, the IEEE noise terms it supports, and how long to
+/// record to see the ones it does not.
+///
+/// Method (IEEE Std 952-1997 Annex C, IEEE Std 1293-2018; NIST SP 1065,
+/// Riley 2008): the overlapping Allan variance of a rate signal y sampled
+/// every τ0 at cluster time τ = mτ0, from its cumulative sums θ_k = Σ_{i<k} y_i,
+///
+///     σ²(τ) = Σ_k (θ_{k+2m} − 2θ_{k+m} + θ_k)² / (2 m² K),
+///
+/// summed over K start indices k (all of them for m ≤ AllanOptions::
+/// full_overlap_max_m, else every d-th, d = ⌊m / min_overlaps⌋: at least
+/// `min_overlaps` starts per cluster width, where further overlap adds no
+/// information). The cluster times are log-spaced, `points_per_octave` a
+/// factor of two, up to `max_tau_fraction` of the record.
+///
+/// Confidence intervals are χ² intervals with the equivalent degrees of
+/// freedom of the overlapping estimator from the approximations of Howe,
+/// Allan & Barnes (1981) as tabulated in NIST SP 1065 Table 5 (also
+/// Greenhall & Riley 2003 for their derivation), for the noise type that the
+/// fitted terms say dominates at that τ (white PM for quantisation, white FM
+/// for white noise, flicker FM for bias instability, random-walk FM for rate
+/// random walk and rate ramp).
+///
+/// The terms, in the variance domain (IEEE 952 Table C.2):
+///
+///     σ²(τ) = 3Q²/τ² + N²/τ + (2 ln 2/π) B² + K²τ/3 + R²τ²/2,
+///
+/// fitted by non-negative weighted least squares (weights from each point's
+/// EDF, iterated with the model's own variance; the covariance inflated for
+/// the correlation of nearby τ), each term reported as measured only where
+/// it carries most of the fitted variance at NoiseOptions::min_region_points
+/// cluster times and is significantly above zero. B is the flat floor of
+/// the curve: min σ ≈ 0.664 B when the other terms are far below it; the fit
+/// separates it from the white noise and random walk around the minimum.
+///
+/// Units: a channel in unit u (m/s² for accelerometers, rad/s for
+/// gyroscopes) gives Q in u·s, N in u/√Hz, B in u, K in u/s/√Hz, R in u/s.
+/// These are continuous-time (two-sided) densities: a white noise of density
+/// N sampled at f_s Hz has σ = N·√f_s per sample, and a random walk of
+/// density K steps by K/√f_s per sample (as Kalibr defines them).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mpcal/calibration.h"
+#include "mpcal/detect.h"
+#include "mpcal/recording.h"
+
+namespace mpcal {
+
+/// The IEEE 952 noise terms, in the order of their slope.
+enum class NoiseTerm {
+  kQuantisation,     ///< ADEV slope −1, Q
+  kWhiteNoise,       ///< slope −½, N (angle / velocity random walk)
+  kBiasInstability,  ///< slope 0, B (flicker)
+  kRandomWalk,       ///< slope +½, K (rate / acceleration random walk)
+  kRateRamp,         ///< slope +1, R
+};
+inline constexpr int kNoiseTermCount = 5;
+/// "quantisation", "white_noise", "bias_instability", "random_walk", "rate_ramp".
+std::string_view ToString(NoiseTerm term);
+
+/// Options of the Allan deviation.
+struct AllanOptions {
+  /// Cluster times per factor of two in τ (log-spaced, rounded to whole
+  /// samples, duplicates dropped). More: a smoother plot, same information.
+  double points_per_octave = 4.0;
+  /// Largest cluster time as a fraction of the record (the last τ has about
+  /// 2 degrees of freedom at 0.25; larger is mostly noise).
+  double max_tau_fraction = 0.25;
+  /// Start indices per cluster width for large m (see the file comment);
+  /// the estimator is fully overlapping for m ≤ this.
+  int min_overlaps = 64;
+  /// Two-sided confidence level of every interval (curve and terms).
+  double confidence = 0.95;
+
+  /// Empty string when valid, otherwise names the first bad field.
+  std::string Validate() const;
+};
+
+/// The cumulative sums of a 3-axis record: all the Allan deviation needs.
+/// θ_0 = 0, θ_k = Σ_{i<k} (y_i − ȳ) in SI units × samples (the mean is
+/// removed first so that the sums stay small and keep their precision in
+/// double; the running sum is accumulated in long double).
+class CumulativeSums3 {
+ public:
+  CumulativeSums3() = default;
+  /// Builds the sums of samples[begin, end) × `si_per_unit` IN PLACE: the
+  /// vector's storage is reused, so memory does not grow beyond the samples.
+  /// `sample_period_s` > 0 is τ0. Requires begin < end ≤ samples.size().
+  static CumulativeSums3 FromSamples(std::vector<Eigen::Vector3d>&& samples,
+                                     std::size_t begin,
+                                     std::size_t end,
+                                     double si_per_unit,
+                                     double sample_period_s);
+  /// Number of cumulative sums (samples used + 1).
+  std::size_t size() const { return theta_.size(); }
+  double sample_period_s() const { return sample_period_s_; }
+  /// The mean removed, per axis, in SI units.
+  const Eigen::Vector3d& mean_si() const { return mean_si_; }
+  const std::vector<Eigen::Vector3d>& theta() const { return theta_; }
+
+ private:
+  std::vector<Eigen::Vector3d> theta_;
+  double sample_period_s_ = 0.0;
+  Eigen::Vector3d mean_si_ = Eigen::Vector3d::Zero();
+};
+
+/// One cluster time of an Allan curve.
+struct AllanPoint {
+  double tau_s = 0.0;
+  std::int64_t m = 0;       ///< τ / τ0
+  std::int64_t stride = 1;  ///< step between start indices
+  std::int64_t terms = 0;   ///< squared differences averaged
+  double avar = 0.0;        ///< Allan variance, u²
+  double adev = 0.0;        ///< √avar, u
+  double edf = 0.0;         ///< equivalent degrees of freedom
+  double adev_lo = 0.0;     ///< confidence interval of adev
+  double adev_hi = 0.0;
+  NoiseTerm dominant = NoiseTerm::kWhiteNoise;  ///< noise type used for the EDF
+};
+
+/// The overlapping Allan variance of each axis at log-spaced τ (EDF and
+/// intervals still at their white-noise defaults; AnalyseSensorNoise sets
+/// them from the fitted terms). Runs on the calling thread.
+/// \throws mpcal::Error when fewer than 8 samples or invalid options.
+std::array<std::vector<AllanPoint>, 3> OverlappingAllan(const CumulativeSums3& sums,
+                                                        const AllanOptions& options);
+
+/// EDF of the overlapping Allan variance at m for N phase points and the
+/// given dominant term (NIST SP 1065 Table 5, Howe, Allan & Barnes 1981).
+double OverlappingAllanEdf(double n_phase, double m, NoiseTerm dominant);
+
+/// Quantile of the χ² distribution with `dof` > 0 (non-integer) degrees of
+/// freedom at probability p in (0, 1).
+double ChiSquareQuantile(double p, double dof);
+
+/// What was found about one term of one axis.
+enum class TermStatus {
+  kMeasured,  ///< the curve shows it: value and interval
+  kNotSeen,   ///< no region of the curve where it dominates: upper bound
+  kMasked,    ///< the neighbouring terms meet above it: a longer record
+              ///< will not show it
+};
+std::string_view ToString(TermStatus status);
+
+/// One noise term of one axis, in the units of the file comment.
+struct TermEstimate {
+  TermStatus status = TermStatus::kNotSeen;
+  /// Fitted value; set only when measured.
+  std::optional<double> value;
+  /// Confidence interval (AllanOptions::confidence); measured only.
+  double lo = 0.0;
+  double hi = 0.0;
+  /// Not measured: the largest value the curve allows (the smallest upper
+  /// confidence limit over τ of the term alone); 0 when none.
+  double upper_bound = 0.0;
+  /// The τ range where it carries most of the fitted variance (measured).
+  double tau_lo_s = 0.0;
+  double tau_hi_s = 0.0;
+  /// Not measured (white noise, bias instability, random walk only): the
+  /// shortest record (s) in which a term at its upper bound would carry
+  /// most of the variance over two octaves of τ below a quarter of the
+  /// record; a smaller true value needs longer. Unset when a longer record
+  /// would not help (kMasked) or there is no bound.
+  std::optional<double> record_needed_s;
+};
+
+/// One axis: its Allan curve and the five terms (index: NoiseTerm).
+struct AxisNoise {
+  std::vector<AllanPoint> curve;
+  std::array<TermEstimate, kNoiseTermCount> terms;
+  /// The fitted model in the variance domain, every term included (Q², N²,
+  /// B², K², R²), to draw the fitted curve: a term not measured may carry a
+  /// little of it, but is never reported as a value.
+  std::array<double, kNoiseTermCount> fit_avar_coefficients{};
+  const TermEstimate& term(NoiseTerm t) const { return terms[static_cast<int>(t)]; }
+  /// The fitted σ²(τ) (u²), from fit_avar_coefficients.
+  double FittedAvar(double tau_s) const;
+};
+
+/// Options of the noise analysis.
+struct NoiseOptions {
+  AllanOptions allan;
+  /// A term counts as seen at a τ where it is at least this fraction of the
+  /// fitted variance.
+  double dominance = 0.5;
+  /// Cluster times at which it must be seen (at 4 per octave, 5 = an
+  /// octave).
+  int min_region_points = 5;
+  /// Iterations of the reweighted fit (weights from the model's variance).
+  int fit_iterations = 4;
+  /// Overlapping estimates at nearby τ are strongly correlated; the fit's
+  /// covariance counts this many independent points per octave (it is
+  /// inflated by points_per_octave / this). Set by simulation (tests and
+  /// bench/noise_study): with 0.5, the intervals of N and K cover the truth
+  /// at about their nominal rate.
+  double independent_points_per_octave = 0.5;
+
+  std::string Validate() const;
+};
+
+/// One 3-axis sensor: its three axes.
+struct SensorNoise {
+  std::array<AxisNoise, 3> axes;
+  /// Mean removed per axis (u): the bias over the record.
+  Eigen::Vector3d mean_si = Eigen::Vector3d::Zero();
+};
+
+/// Allan curves and terms of a sensor's cumulative sums.
+/// \throws mpcal::Error as OverlappingAllan.
+SensorNoise AnalyseSensorNoise(const CumulativeSums3& sums, const NoiseOptions& options);
+
+/// Which samples of a recording were analysed.
+enum class NoiseSegmentKind {
+  kWholeRecord,   ///< detection found no motion
+  kLongestStill,  ///< the longest static interval (the sensor moved)
+};
+std::string_view ToString(NoiseSegmentKind kind);
+
+struct NoiseSegment {
+  NoiseSegmentKind kind = NoiseSegmentKind::kWholeRecord;
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  std::size_t static_intervals = 0;  ///< found by detection
+};
+
+/// The whole record when detection found it all still (one interval from
+/// within a settle time of its start to its end), else the longest static
+/// interval. std::nullopt when detection found none.
+std::optional<NoiseSegment> ChooseNoiseSegment(const Recording& recording,
+                                               const DetectResult& detection);
+
+/// The analysis of a recording.
+struct NoiseResult {
+  NoiseSegment segment;
+  double sample_period_s = 0.0;
+  double rate_hz = 0.0;
+  double record_s = 0.0;    ///< duration analysed
+  std::size_t samples = 0;  ///< samples analysed
+  /// Samples spaced more than 1.5 τ0 from the previous one (lost data; the
+  /// analysis treats the samples as evenly spaced).
+  std::size_t gaps = 0;
+  /// Accelerometer (u = m/s²) and gyroscope (u = rad/s; unset without one).
+  SensorNoise accel_mps2;
+  std::optional<SensorNoise> gyro_radps;
+};
+
+/// Analyses recording[segment] (consumed: its samples become the sums).
+/// `accel_mps2_per_unit`: the factor from the log's units to m/s².
+/// Accelerometer and gyroscope run on two threads.
+/// \throws mpcal::Error for invalid options, fewer than 8 samples, or a
+///   segment outside the recording.
+NoiseResult AnalyseNoise(Recording&& recording,
+                         const NoiseSegment& segment,
+                         double accel_mps2_per_unit,
+                         const NoiseOptions& options);
+
+/// The white noise density of each axis (m/s²/√Hz, the N of this file)
+/// from the scatter of the static positions of a calibration: the pooled
+/// within-position variance s² (each position's sample_std_mps2, weighted by
+/// its samples − 1) over its sample rate, N² = s²/f_s. Over positions of a
+/// few seconds it is the white noise, as `AnalyseNoise` finds it at short τ
+/// (it includes the little the other terms add over a position). nullopt
+/// without a position of at least 2 samples and a positive duration.
+std::optional<Eigen::Vector3d> WhiteNoiseFromPositions(
+    const std::vector<PositionSummary>& positions);
+
+}  // namespace mpcal

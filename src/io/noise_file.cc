@@ -1,0 +1,447 @@
+// The noise analysis's JSON (writer and reader), Kalibr's IMU YAML, the
+// truth of a simulated still record, and its CSV written row by row.
+#include "mpcal/noise_file.h"
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "mpcal/error.h"
+#include "mpcal/json_reader.h"
+
+namespace mpcal {
+namespace {
+
+using json = nlohmann::ordered_json;
+constexpr const char* kFormat = "mpcal.noise/1";
+constexpr const char* kAxisNames[3] = {"x", "y", "z"};
+
+const char* SensorUnitKey(bool gyroscope) { return gyroscope ? "radps" : "mps2"; }
+
+json TermJson(const TermEstimate& e) {
+  json j;
+  j["status"] = std::string(ToString(e.status));
+  if (e.value) {
+    j["value"] = *e.value;
+    j["lo"] = e.lo;
+    j["hi"] = e.hi;
+    j["tau_range_s"] = {e.tau_lo_s, e.tau_hi_s};
+  } else {
+    j["upper_bound"] = e.upper_bound;
+    j["record_needed_s"] = e.record_needed_s ? json(*e.record_needed_s) : json(nullptr);
+  }
+  return j;
+}
+
+json AxisJson(const AxisNoise& a, bool gyro) {
+  json j;
+  for (int t = 0; t < kNoiseTermCount; ++t) {
+    j[NoiseTermKey(static_cast<NoiseTerm>(t), gyro)] = TermJson(a.terms[t]);
+  }
+  const std::string u = SensorUnitKey(gyro);
+  const AllanPoint* min = a.curve.empty() ? nullptr : &a.curve.front();
+  for (const AllanPoint& p : a.curve) {
+    if (p.adev < min->adev) min = &p;
+  }
+  if (min) {
+    j["adev_min_" + u] = min->adev;
+    j["adev_min_tau_s"] = min->tau_s;
+  }
+  json allan;
+  json tau = json::array(), adev = json::array(), lo = json::array(), hi = json::array(),
+       edf = json::array(), m = json::array(), stride = json::array(),
+       type = json::array();
+  for (const AllanPoint& p : a.curve) {
+    tau.push_back(p.tau_s);
+    adev.push_back(p.adev);
+    lo.push_back(p.adev_lo);
+    hi.push_back(p.adev_hi);
+    edf.push_back(p.edf);
+    m.push_back(p.m);
+    stride.push_back(p.stride);
+    type.push_back(std::string(ToString(p.dominant)));
+  }
+  allan["tau_s"] = tau;
+  allan["adev_" + u] = adev;
+  allan["adev_lo_" + u] = lo;
+  allan["adev_hi_" + u] = hi;
+  allan["edf"] = edf;
+  allan["m"] = m;
+  allan["stride"] = stride;
+  allan["noise_type"] = type;
+  // The fitted model (every term, squared, in the variance domain), to draw
+  // the fitted curve; values are reported only in the terms above.
+  json fit;
+  for (int t = 0; t < kNoiseTermCount; ++t) {
+    fit[std::string(ToString(static_cast<NoiseTerm>(t)))] = a.fit_avar_coefficients[t];
+  }
+  allan["fit_avar_coefficients"] = fit;
+  j["allan"] = allan;
+  return j;
+}
+
+json SensorJson(const SensorNoise& s, bool gyro) {
+  json j;
+  j[std::string("mean_") + SensorUnitKey(gyro)] = {
+      s.mean_si.x(), s.mean_si.y(), s.mean_si.z()};
+  json axes;
+  for (int i = 0; i < 3; ++i) axes[kAxisNames[i]] = AxisJson(s.axes[i], gyro);
+  j["axes"] = axes;
+  return j;
+}
+
+std::optional<NoiseTerm> ParseTerm(std::string_view s) {
+  for (int t = 0; t < kNoiseTermCount; ++t) {
+    if (ToString(static_cast<NoiseTerm>(t)) == s) return static_cast<NoiseTerm>(t);
+  }
+  return std::nullopt;
+}
+
+TermEstimate ReadTerm(const JsonReader& r, const json& o, const std::string& path) {
+  TermEstimate e;
+  const std::string status = r.String(o, path, "status");
+  if (status == "measured") {
+    e.status = TermStatus::kMeasured;
+    e.value = r.Number(o, path, "value");
+    e.lo = r.Number(o, path, "lo");
+    e.hi = r.Number(o, path, "hi");
+    const json& range =
+        r.ArrayValue(r.Field(o, path, "tau_range_s"), path + ".tau_range_s", 2);
+    e.tau_lo_s = r.NumberValue(range[0], path + ".tau_range_s[0]");
+    e.tau_hi_s = r.NumberValue(range[1], path + ".tau_range_s[1]");
+  } else if (status == "not_seen" || status == "masked") {
+    e.status = status == "masked" ? TermStatus::kMasked : TermStatus::kNotSeen;
+    e.upper_bound = r.Number(o, path, "upper_bound");
+    const json& need = r.Field(o, path, "record_needed_s");
+    if (!need.is_null())
+      e.record_needed_s = r.NumberValue(need, path + ".record_needed_s");
+  } else {
+    r.Fail(
+        fmt::format("field '{}.status' must be measured, not_seen or masked, found '{}'",
+                    path,
+                    status));
+  }
+  return e;
+}
+
+std::vector<double> Numbers(const JsonReader& r,
+                            const json& o,
+                            const std::string& path,
+                            const std::string& key,
+                            std::size_t size) {
+  const std::string field = JsonReader::Join(path, key);
+  const json& a = r.ArrayValue(r.Field(o, path, key), field, size);
+  std::vector<double> v;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    v.push_back(r.NumberValue(a[i], fmt::format("{}[{}]", field, i)));
+  }
+  return v;
+}
+
+AxisNoise ReadAxis(const JsonReader& r,
+                   const json& o,
+                   const std::string& path,
+                   bool gyro) {
+  AxisNoise a;
+  for (int t = 0; t < kNoiseTermCount; ++t) {
+    const std::string key = NoiseTermKey(static_cast<NoiseTerm>(t), gyro);
+    a.terms[t] = ReadTerm(r, r.Object(o, path, key), JsonReader::Join(path, key));
+  }
+  const std::string ap = JsonReader::Join(path, "allan");
+  const json& allan = r.Object(o, path, "allan");
+  const json& tau_json = r.Field(allan, ap, "tau_s");
+  if (!tau_json.is_array()) r.Fail(fmt::format("field '{}.tau_s' must be an array", ap));
+  const std::size_t n = tau_json.size();
+  const std::string u = SensorUnitKey(gyro);
+  const std::vector<double> tau = Numbers(r, allan, ap, "tau_s", n);
+  const std::vector<double> adev = Numbers(r, allan, ap, "adev_" + u, n);
+  const std::vector<double> lo = Numbers(r, allan, ap, "adev_lo_" + u, n);
+  const std::vector<double> hi = Numbers(r, allan, ap, "adev_hi_" + u, n);
+  const std::vector<double> edf = Numbers(r, allan, ap, "edf", n);
+  const json& types =
+      r.ArrayValue(r.Field(allan, ap, "noise_type"), ap + ".noise_type", n);
+  for (std::size_t i = 0; i < n; ++i) {
+    AllanPoint p;
+    p.tau_s = tau[i];
+    p.adev = adev[i];
+    p.avar = adev[i] * adev[i];
+    p.adev_lo = lo[i];
+    p.adev_hi = hi[i];
+    p.edf = edf[i];
+    const auto term = types[i].is_string() ? ParseTerm(types[i].get<std::string>())
+                                           : std::optional<NoiseTerm>();
+    if (!term)
+      r.Fail(fmt::format("field '{}.noise_type[{}]' is not a noise term", ap, i));
+    p.dominant = *term;
+    a.curve.push_back(p);
+  }
+  const std::string fp = ap + ".fit_avar_coefficients";
+  const json& fit = r.Object(allan, ap, "fit_avar_coefficients");
+  for (int t = 0; t < kNoiseTermCount; ++t) {
+    a.fit_avar_coefficients[t] = r.Number(fit, fp, ToString(static_cast<NoiseTerm>(t)));
+  }
+  return a;
+}
+
+SensorNoise ReadSensor(const JsonReader& r,
+                       const json& o,
+                       const std::string& path,
+                       bool gyro) {
+  SensorNoise s;
+  s.mean_si = r.Vector(o, path, std::string("mean_") + SensorUnitKey(gyro));
+  const std::string axes_path = JsonReader::Join(path, "axes");
+  const json& axes = r.Object(o, path, "axes");
+  for (int i = 0; i < 3; ++i) {
+    s.axes[i] = ReadAxis(r,
+                         r.Object(axes, axes_path, kAxisNames[i]),
+                         JsonReader::Join(axes_path, kAxisNames[i]),
+                         gyro);
+  }
+  return s;
+}
+
+// The largest of the three axes: a measured value, or the bound of an axis
+// where it was not measured (the larger of the two kinds wins, so that a
+// bound is never hidden behind a smaller measured value).
+KalibrValue Largest(const SensorNoise& s, NoiseTerm term, const char* what) {
+  KalibrValue best;
+  bool any = false;
+  for (int i = 0; i < 3; ++i) {
+    const TermEstimate& e = s.axes[i].term(term);
+    const bool bound = !e.value.has_value();
+    const double v = bound ? e.upper_bound : *e.value;
+    if (!(v > 0.0)) continue;
+    if (!any || v > best.value) {
+      best = KalibrValue{v, i, bound, bound ? e.record_needed_s : std::nullopt};
+      any = true;
+    }
+  }
+  if (!any) throw Error(fmt::format("no {} was measured or bounded on any axis", what));
+  return best;
+}
+
+std::string Describe(const KalibrValue& v, const SensorNoise& s, NoiseTerm term) {
+  std::string per_axis;
+  for (int i = 0; i < 3; ++i) {
+    const TermEstimate& e = s.axes[i].term(term);
+    per_axis +=
+        fmt::format("{}{} {}",
+                    i ? ", " : "",
+                    kAxisNames[i],
+                    e.value ? fmt::format("{:.4g}", *e.value)
+                            : fmt::format("< {:.4g} (not measured)", e.upper_bound));
+  }
+  std::string s_out = fmt::format("from axis {} ({})", kAxisNames[v.axis], per_axis);
+  if (v.upper_bound) {
+    s_out += "; NOT MEASURED: an upper bound from a record too short to show it";
+    if (v.record_needed_s) {
+      s_out += fmt::format(", record at least {:.1f} h to measure it",
+                           *v.record_needed_s / 3600);
+    }
+  }
+  return s_out;
+}
+
+void AppendNumber(std::string& buf, double v, int digits) {
+  char tmp[64];
+  const auto res =
+      digits > 0
+          ? std::to_chars(tmp, tmp + sizeof tmp, v, std::chars_format::general, digits)
+          : std::to_chars(tmp, tmp + sizeof tmp, v);
+  buf.append(tmp, res.ptr);
+}
+
+}  // namespace
+
+std::string NoiseTermKey(NoiseTerm term, bool gyro) {
+  switch (term) {
+    case NoiseTerm::kQuantisation:
+      return gyro ? "quantisation_rad" : "quantisation_mps";
+    case NoiseTerm::kWhiteNoise:
+      return gyro ? "white_noise_radps_per_rthz" : "white_noise_mps2_per_rthz";
+    case NoiseTerm::kBiasInstability:
+      return gyro ? "bias_instability_radps" : "bias_instability_mps2";
+    case NoiseTerm::kRandomWalk:
+      return gyro ? "random_walk_radps2_per_rthz" : "random_walk_mps3_per_rthz";
+    case NoiseTerm::kRateRamp:
+      return gyro ? "rate_ramp_radps2" : "rate_ramp_mps3";
+  }
+  return "?";
+}
+
+std::string NoiseJson(const NoiseResult& r, const std::string& input, double confidence) {
+  json j;
+  j["format"] = kFormat;
+  j["input"] = input;
+  j["segment"] = {{"kind", std::string(ToString(r.segment.kind))},
+                  {"begin", r.segment.begin},
+                  {"end", r.segment.end},
+                  {"static_intervals", r.segment.static_intervals}};
+  j["rate_hz"] = r.rate_hz;
+  j["sample_period_s"] = r.sample_period_s;
+  j["record_s"] = r.record_s;
+  j["samples"] = r.samples;
+  j["gaps"] = r.gaps;
+  j["confidence"] = confidence;
+  j["accelerometer"] = SensorJson(r.accel_mps2, false);
+  if (r.gyro_radps) j["gyroscope"] = SensorJson(*r.gyro_radps, true);
+  return j.dump(1) + "\n";
+}
+
+NoiseFile ParseNoiseJson(const std::string& text, const std::string& origin) {
+  const JsonReader r(origin, "mpcal noise --json");
+  const json doc = r.Parse(text);
+  r.ExpectFormat(doc, "mpcal.noise", 1);
+  NoiseFile f;
+  f.input = r.String(doc, "", "input");
+  f.confidence = r.Number(doc, "", "confidence");
+  NoiseResult& res = f.result;
+  res.rate_hz = r.Number(doc, "", "rate_hz");
+  res.sample_period_s = r.Number(doc, "", "sample_period_s");
+  res.record_s = r.Number(doc, "", "record_s");
+  res.samples = static_cast<std::size_t>(r.Integer(doc, "", "samples", 0, 1LL << 50));
+  res.gaps = static_cast<std::size_t>(r.Integer(doc, "", "gaps", 0, 1LL << 50));
+  const json& seg = r.Object(doc, "", "segment");
+  res.segment.kind = r.String(seg, "segment", "kind") == "longest_still"
+                         ? NoiseSegmentKind::kLongestStill
+                         : NoiseSegmentKind::kWholeRecord;
+  res.segment.begin =
+      static_cast<std::size_t>(r.Integer(seg, "segment", "begin", 0, 1LL << 50));
+  res.segment.end =
+      static_cast<std::size_t>(r.Integer(seg, "segment", "end", 0, 1LL << 50));
+  res.accel_mps2 =
+      ReadSensor(r, r.Object(doc, "", "accelerometer"), "accelerometer", false);
+  if (doc.contains("gyroscope")) {
+    res.gyro_radps = ReadSensor(r, r.Object(doc, "", "gyroscope"), "gyroscope", true);
+  }
+  return f;
+}
+
+NoiseFile ReadNoiseFile(const std::string& path) {
+  const std::string origin = fmt::format("noise file '{}'", path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(origin + ": cannot be opened (does it exist?)");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseNoiseJson(text.str(), origin);
+}
+
+KalibrFile KalibrYaml(const NoiseResult& r,
+                      const std::string& input,
+                      const std::string& topic) {
+  if (!r.gyro_radps) throw Error("Kalibr's IMU file needs a gyroscope; the log has none");
+  KalibrFile k;
+  const SensorNoise& a = r.accel_mps2;
+  const SensorNoise& g = *r.gyro_radps;
+  k.accel_noise_density = Largest(a, NoiseTerm::kWhiteNoise, "accelerometer white noise");
+  k.accel_random_walk = Largest(a, NoiseTerm::kRandomWalk, "accelerometer random walk");
+  k.gyro_noise_density = Largest(g, NoiseTerm::kWhiteNoise, "gyroscope white noise");
+  k.gyro_random_walk = Largest(g, NoiseTerm::kRandomWalk, "gyroscope random walk");
+  std::string& y = k.text;
+  y += fmt::format(
+      "# Kalibr IMU noise model, measured by mpcal {} from '{}'\n", MPCAL_VERSION, input);
+  y += fmt::format("# ({:.2f} h at {:.6g} Hz, overlapping Allan deviation).\n",
+                   r.record_s / 3600.0,
+                   r.rate_hz);
+  y += "# Continuous-time densities, as Kalibr defines them: the discrete noise per\n"
+       "# sample is density * sqrt(update_rate), the random-walk step density / "
+       "sqrt(update_rate).\n"
+       "# Rule across axes: the largest of x, y, z (one value per sensor; no axis is\n"
+       "# trusted more than it deserves).\n"
+       "# Kalibr's wiki advises inflating these for a filter (e.g. x10 the noise "
+       "densities)\n"
+       "# to cover unmodelled effects; these are the measured values, not inflated.\n";
+  y += fmt::format("# accelerometer_noise_density {}\n",
+                   Describe(k.accel_noise_density, a, NoiseTerm::kWhiteNoise));
+  y += fmt::format("# accelerometer_random_walk {}\n",
+                   Describe(k.accel_random_walk, a, NoiseTerm::kRandomWalk));
+  y += fmt::format("# gyroscope_noise_density {}\n",
+                   Describe(k.gyro_noise_density, g, NoiseTerm::kWhiteNoise));
+  y += fmt::format("# gyroscope_random_walk {}\n",
+                   Describe(k.gyro_random_walk, g, NoiseTerm::kRandomWalk));
+  const auto bound = [](const KalibrValue& v) {
+    return v.upper_bound ? "  UPPER BOUND, " : "  ";
+  };
+  y += fmt::format("accelerometer_noise_density: {:.6e}  #{}m/s^2/sqrt(Hz)\n",
+                   k.accel_noise_density.value,
+                   bound(k.accel_noise_density));
+  y += fmt::format("accelerometer_random_walk: {:.6e}  #{}m/s^3/sqrt(Hz)\n",
+                   k.accel_random_walk.value,
+                   bound(k.accel_random_walk));
+  y += fmt::format("gyroscope_noise_density: {:.6e}  #{}rad/s/sqrt(Hz)\n",
+                   k.gyro_noise_density.value,
+                   bound(k.gyro_noise_density));
+  y += fmt::format("gyroscope_random_walk: {:.6e}  #{}rad/s^2/sqrt(Hz)\n",
+                   k.gyro_random_walk.value,
+                   bound(k.gyro_random_walk));
+  y += fmt::format("rostopic: {}\n", topic);
+  y += fmt::format("update_rate: {:.6g}  # Hz\n", r.rate_hz);
+  return k;
+}
+
+std::string NoiseTruthJson(const NoiseSimulationOptions& o) {
+  json j;
+  j["format"] = "mpcal.noise_truth/1";
+  j["duration_s"] = o.duration_s;
+  j["rate_hz"] = o.rate_hz;
+  j["seed"] = o.seed;
+  j["bias_instability_model"] =
+      "flicker: sum of first-order Gauss-Markov processes, two per decade of correlation "
+      "time";
+  j["flicker_min_tau_s"] = o.flicker_min_tau_s;
+  for (const bool gyro : {false, true}) {
+    const auto& axes = gyro ? o.gyro_radps : o.accel_mps2;
+    json s;
+    const Eigen::Vector3d& mean = gyro ? o.gyro_mean_radps : o.accel_mean_mps2;
+    s[std::string("mean_") + SensorUnitKey(gyro)] = {mean.x(), mean.y(), mean.z()};
+    const NoiseTerm terms[3] = {
+        NoiseTerm::kWhiteNoise, NoiseTerm::kBiasInstability, NoiseTerm::kRandomWalk};
+    for (const NoiseTerm t : terms) {
+      json v = json::array();
+      for (const AxisNoiseTruth& a : axes) {
+        v.push_back(t == NoiseTerm::kWhiteNoise        ? a.white_noise
+                    : t == NoiseTerm::kBiasInstability ? a.bias_instability
+                                                       : a.random_walk);
+      }
+      s[NoiseTermKey(t, gyro)] = v;
+    }
+    j[gyro ? "gyroscope" : "accelerometer"] = s;
+  }
+  return j.dump(1) + "\n";
+}
+
+void WriteImuCsv(
+    std::ostream& out,
+    const std::function<bool(double*, Eigen::Vector3d*, Eigen::Vector3d*)>& next,
+    int digits,
+    std::size_t rows,
+    const std::function<void(double)>& progress) {
+  out << "t,ax,ay,az,gx,gy,gz\n";
+  std::string buf;
+  buf.reserve(1 << 20);
+  double t = 0.0;
+  Eigen::Vector3d a, g;
+  std::size_t row = 0;
+  const std::size_t report_every = std::max<std::size_t>(rows / 100, 1);
+  while (next(&t, &a, &g)) {
+    AppendNumber(buf, t, 0);
+    for (int i = 0; i < 3; ++i) buf.push_back(','), AppendNumber(buf, a[i], digits);
+    for (int i = 0; i < 3; ++i) buf.push_back(','), AppendNumber(buf, g[i], digits);
+    buf.push_back('\n');
+    if (buf.size() > (1 << 20) - 256) {
+      out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
+      buf.clear();
+    }
+    if (progress && ++row % report_every == 0) progress(static_cast<double>(row) / rows);
+  }
+  out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
+  if (!out) throw Error("writing the record failed (disk full?)");
+}
+
+}  // namespace mpcal

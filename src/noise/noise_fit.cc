@@ -1,0 +1,302 @@
+// The noise terms of one axis from its Allan curve: a non-negative weighted
+// least-squares fit of the sum of the IEEE 952 terms in the variance domain,
+// each term kept only where it dominates, with the confidence intervals of
+// every point set from the noise type the fit says dominates there.
+#include "noise/noise_fit.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "mpcal/error.h"
+#include "mpcal/noise.h"
+
+namespace mpcal {
+namespace {
+
+constexpr int kTerms = kNoiseTermCount;
+using TermMask = unsigned;
+using Coefficients = std::array<double, kTerms>;  // Q², N², B², K², R²
+
+// σ²(τ) per unit coefficient of each term (IEEE 952 Table C.2).
+double Basis(int term, double tau_s) {
+  switch (static_cast<NoiseTerm>(term)) {
+    case NoiseTerm::kQuantisation:
+      return 3.0 / (tau_s * tau_s);
+    case NoiseTerm::kWhiteNoise:
+      return 1.0 / tau_s;
+    case NoiseTerm::kBiasInstability:
+      return 2.0 * std::numbers::ln2 / std::numbers::pi;
+    case NoiseTerm::kRandomWalk:
+      return tau_s / 3.0;
+    case NoiseTerm::kRateRamp:
+      return 0.5 * tau_s * tau_s;
+  }
+  return 0.0;
+}
+
+double Model(const Coefficients& c, double tau_s) {
+  double sum = 0.0;
+  for (int t = 0; t < kTerms; ++t) sum += c[t] * Basis(t, tau_s);
+  return sum;
+}
+
+struct Fit {
+  Coefficients c{};
+  Coefficients variance{};  // of each coefficient
+  double cost = std::numeric_limits<double>::infinity();
+};
+
+// Non-negative least squares over the terms in `allowed`: the optimum lies
+// on some support set where the unconstrained optimum is positive, so with
+// five terms every subset is tried (exact, and 31 tiny solves).
+Fit FitNonNegative(const std::vector<AllanPoint>& curve,
+                   const std::vector<double>& weight,
+                   TermMask allowed) {
+  Fit best;
+  const int rows = static_cast<int>(curve.size());
+  for (TermMask set = 1; set < (1u << kTerms); ++set) {
+    if ((set & ~allowed) != 0) continue;
+    std::vector<int> cols;
+    for (int t = 0; t < kTerms; ++t) {
+      if (set & (1u << t)) cols.push_back(t);
+    }
+    const int k = static_cast<int>(cols.size());
+    if (k > rows) continue;
+    Eigen::MatrixXd a(rows, k);
+    Eigen::VectorXd b(rows);
+    for (int j = 0; j < rows; ++j) {
+      const double sw = std::sqrt(weight[j]);
+      for (int i = 0; i < k; ++i) a(j, i) = sw * Basis(cols[i], curve[j].tau_s);
+      b(j) = sw * curve[j].avar;
+    }
+    // Columns scaled to unit norm: the terms differ by many decades.
+    const Eigen::VectorXd scale = a.colwise().norm().transpose();
+    if ((scale.array() <= 0.0).any()) continue;
+    const Eigen::MatrixXd as = a * scale.cwiseInverse().asDiagonal();
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(as);
+    if (qr.rank() < k) continue;
+    const Eigen::VectorXd xs = qr.solve(b);
+    const Eigen::VectorXd x = xs.cwiseQuotient(scale);
+    if ((x.array() <= 0.0).any()) continue;
+    const double cost = (a * x - b).squaredNorm();
+    if (cost >= best.cost) continue;
+    best = Fit{};
+    best.cost = cost;
+    const Eigen::MatrixXd cov_s = (as.transpose() * as).inverse();
+    for (int i = 0; i < k; ++i) {
+      best.c[cols[i]] = x(i);
+      best.variance[cols[i]] = cov_s(i, i) / (scale(i) * scale(i));
+    }
+  }
+  return best;
+}
+
+int Dominant(const Coefficients& c, double tau_s) {
+  int arg = static_cast<int>(NoiseTerm::kWhiteNoise);
+  double largest = -1.0;
+  for (int t = 0; t < kTerms; ++t) {
+    const double v = c[t] * Basis(t, tau_s);
+    if (v > largest) largest = v, arg = t;
+  }
+  return arg;
+}
+
+// EDF and interval of every point for the dominant term of `c` (white noise
+// before any fit).
+void SetIntervals(std::vector<AllanPoint>& curve,
+                  const Coefficients* c,
+                  double phase_points,
+                  double confidence) {
+  const double lo_p = 0.5 * (1.0 - confidence);
+  for (AllanPoint& p : curve) {
+    p.dominant =
+        c ? static_cast<NoiseTerm>(Dominant(*c, p.tau_s)) : NoiseTerm::kWhiteNoise;
+    p.edf =
+        std::min(OverlappingAllanEdf(phase_points, static_cast<double>(p.m), p.dominant),
+                 static_cast<double>(p.terms));
+    p.adev_lo = std::sqrt(p.avar * p.edf / ChiSquareQuantile(1.0 - lo_p, p.edf));
+    p.adev_hi = std::sqrt(p.avar * p.edf / ChiSquareQuantile(lo_p, p.edf));
+  }
+}
+
+// The reweighted fit: weights 1 / var(σ̂²) = edf / (2 model²), the model's
+// variance rather than the data's (weights from the data would pull the fit
+// towards the points that came out low).
+Fit FitTerms(std::vector<AllanPoint>& curve,
+             TermMask allowed,
+             double phase_points,
+             const NoiseOptions& o) {
+  std::vector<double> weight(curve.size());
+  const double inflation = o.allan.points_per_octave / o.independent_points_per_octave;
+  SetIntervals(curve, nullptr, phase_points, o.allan.confidence);
+  for (std::size_t j = 0; j < curve.size(); ++j) {
+    weight[j] = curve[j].edf / (2.0 * curve[j].avar * curve[j].avar);
+  }
+  Fit fit = FitNonNegative(curve, weight, allowed);
+  for (int it = 0; it < o.fit_iterations && std::isfinite(fit.cost); ++it) {
+    SetIntervals(curve, &fit.c, phase_points, o.allan.confidence);
+    for (std::size_t j = 0; j < curve.size(); ++j) {
+      const double model = Model(fit.c, curve[j].tau_s);
+      weight[j] = curve[j].edf / (2.0 * model * model);
+    }
+    const Fit next = FitNonNegative(curve, weight, allowed);
+    if (!std::isfinite(next.cost)) break;
+    fit = next;
+  }
+  if (std::isfinite(fit.cost))
+    SetIntervals(curve, &fit.c, phase_points, o.allan.confidence);
+  for (double& v : fit.variance) v *= inflation;
+  return fit;
+}
+
+// Points where term t carries at least `dominance` of the fitted variance.
+std::vector<std::size_t> DominatedPoints(const std::vector<AllanPoint>& curve,
+                                         const Coefficients& c,
+                                         int t,
+                                         double dominance) {
+  std::vector<std::size_t> out;
+  for (std::size_t j = 0; j < curve.size(); ++j) {
+    const double total = Model(c, curve[j].tau_s);
+    if (c[t] > 0.0 && c[t] * Basis(t, curve[j].tau_s) >= dominance * total)
+      out.push_back(j);
+  }
+  return out;
+}
+
+// Term t at coefficient c_t is seen at τ when it carries `dominance` of the
+// variance with the other measured terms `others`; the smallest such τ on a
+// fine log grid up to 10⁹ s, or NaN.
+double FirstDominantTau(
+    const Coefficients& others, int t, double c_t, double tau0_s, double dominance) {
+  for (double tau = tau0_s; tau < 1e9; tau *= std::exp2(1.0 / 16.0)) {
+    const double own = c_t * Basis(t, tau);
+    if (own >= dominance * (own + Model(others, tau))) return tau;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
+std::string_view ToString(TermStatus status) {
+  switch (status) {
+    case TermStatus::kMeasured:
+      return "measured";
+    case TermStatus::kNotSeen:
+      return "not_seen";
+    case TermStatus::kMasked:
+      return "masked";
+  }
+  return "?";
+}
+
+std::string NoiseOptions::Validate() const {
+  if (std::string bad = allan.Validate(); !bad.empty()) return "allan." + bad;
+  if (!(dominance > 0.0 && dominance < 1.0)) return "dominance must be in (0, 1)";
+  if (min_region_points < 1) return "min_region_points must be at least 1";
+  if (fit_iterations < 0) return "fit_iterations must not be negative";
+  if (!(independent_points_per_octave > 0.0 &&
+        independent_points_per_octave <= allan.points_per_octave)) {
+    return "independent_points_per_octave must be in (0, allan.points_per_octave]";
+  }
+  return {};
+}
+
+double AxisNoise::FittedAvar(double tau_s) const {
+  double sum = 0.0;
+  for (int t = 0; t < kTerms; ++t) sum += fit_avar_coefficients[t] * Basis(t, tau_s);
+  return sum;
+}
+
+namespace internal {
+
+AxisNoise AnalyseAxis(std::vector<AllanPoint> curve,
+                      double phase_points,
+                      const NoiseOptions& o) {
+  AxisNoise out;
+  // One fit with every term (non-negative: those the curve does not support
+  // come out zero or small); then each is reported only where it dominates.
+  // Refitting without the terms not seen would push their variance into
+  // their neighbours (a bias instability under the white noise and random
+  // walk would inflate both).
+  const TermMask all = (1u << kTerms) - 1;
+  Fit fit = FitTerms(curve, all, phase_points, o);
+  if (!std::isfinite(fit.cost)) {
+    fit = Fit{};
+    SetIntervals(curve, nullptr, phase_points, o.allan.confidence);
+  }
+  for (int t = 0; t < kTerms; ++t) out.fit_avar_coefficients[t] = fit.c[t];
+
+  // Measured terms: value and interval from the coefficient's variance, as a
+  // scaled χ² with ν = 2 c² / var(c) degrees of freedom (exact for one
+  // point; keeps the interval positive).
+  const double z = std::sqrt(ChiSquareQuantile(o.allan.confidence, 1.0));
+  const double lo_p = 0.5 * (1.0 - o.allan.confidence);
+  for (int t = 0; t < kTerms; ++t) {
+    const std::vector<std::size_t> region = DominatedPoints(curve, fit.c, t, o.dominance);
+    const double c = fit.c[t];
+    const bool significant = c > z * std::sqrt(fit.variance[t]);
+    if (static_cast<int>(region.size()) < o.min_region_points || !significant) continue;
+    TermEstimate& e = out.terms[t];
+    const double nu = std::max(2.0 * c * c / fit.variance[t], 0.1);
+    e.status = TermStatus::kMeasured;
+    e.value = std::sqrt(c);
+    e.lo = std::sqrt(c * nu / ChiSquareQuantile(1.0 - lo_p, nu));
+    e.hi = std::sqrt(c * nu / ChiSquareQuantile(lo_p, nu));
+    e.tau_lo_s = curve[region.front()].tau_s;
+    e.tau_hi_s = curve[region.back()].tau_s;
+  }
+
+  // The others: the tightest upper confidence limit of the term alone, and
+  // for white noise, bias instability and random walk whether a longer
+  // record would show them and how long.
+  const double tau0_s = curve.front().tau_s / static_cast<double>(curve.front().m);
+  const double tau_max_s = curve.back().tau_s;
+  const double region_factor =
+      std::exp2((o.min_region_points - 1) / o.allan.points_per_octave);
+  const bool walk_measured = out.term(NoiseTerm::kRandomWalk).value.has_value() ||
+                             out.term(NoiseTerm::kRateRamp).value.has_value();
+  for (int t = 0; t < kTerms; ++t) {
+    TermEstimate& e = out.terms[t];
+    if (e.status == TermStatus::kMeasured) continue;
+    double bound = std::numeric_limits<double>::infinity();
+    for (const AllanPoint& p : curve) {
+      bound = std::min(bound, std::sqrt(p.adev_hi * p.adev_hi / Basis(t, p.tau_s)));
+    }
+    e.upper_bound = std::isfinite(bound) ? bound : 0.0;
+    const NoiseTerm term = static_cast<NoiseTerm>(t);
+    if (term == NoiseTerm::kBiasInstability && walk_measured) {
+      // The random walk rises before the white noise falls to this level:
+      // a flat region that is not there in this record never will be.
+      e.status = TermStatus::kMasked;
+      continue;
+    }
+    if (term != NoiseTerm::kBiasInstability && term != NoiseTerm::kRandomWalk) continue;
+    if (e.upper_bound <= 0.0) continue;
+    Coefficients others = fit.c;
+    others[t] = 0.0;
+    const double tau_seen =
+        FirstDominantTau(others, t, e.upper_bound * e.upper_bound, tau0_s, o.dominance);
+    if (!std::isfinite(tau_seen)) {
+      e.status = TermStatus::kMasked;
+      continue;
+    }
+    // Seen over min_region_points cluster times, the last at most a
+    // quarter (max_tau_fraction) of the record; at least an octave more than
+    // this record, which did not show it (the bound is an upper one: a
+    // smaller term needs longer).
+    const double needed = tau_seen * region_factor / o.allan.max_tau_fraction;
+    e.record_needed_s = std::max(needed, 2.0 * tau_max_s / o.allan.max_tau_fraction);
+  }
+  out.curve = std::move(curve);
+  return out;
+}
+
+}  // namespace internal
+}  // namespace mpcal

@@ -1,0 +1,184 @@
+// The noise section: each axis's Allan deviation on log-log axes with its
+// confidence band, the fitted terms and their sum, and the terms table in SI
+// and datasheet units.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "mpcal/noise_units.h"
+#include "report/html.h"
+#include "report/line_plot.h"
+#include "report/sections.h"
+
+namespace mpcal::report {
+namespace {
+
+constexpr const char* kAxis[3] = {"x", "y", "z"};
+
+const char* TermName(NoiseTerm t) {
+  switch (t) {
+    case NoiseTerm::kQuantisation:
+      return "quantisation Q";
+    case NoiseTerm::kWhiteNoise:
+      return "white noise N";
+    case NoiseTerm::kBiasInstability:
+      return "bias instability B";
+    case NoiseTerm::kRandomWalk:
+      return "random walk K";
+    case NoiseTerm::kRateRamp:
+      return "rate ramp R";
+  }
+  return "";
+}
+
+// σ(τ) of one term alone (IEEE 952 Table C.2).
+double TermAdev(NoiseTerm t, double v, double tau_s) {
+  switch (t) {
+    case NoiseTerm::kQuantisation:
+      return std::sqrt(3.0) * v / tau_s;
+    case NoiseTerm::kWhiteNoise:
+      return v / std::sqrt(tau_s);
+    case NoiseTerm::kBiasInstability:
+      return v * std::sqrt(2.0 * std::log(2.0) / M_PI);
+    case NoiseTerm::kRandomWalk:
+      return v * std::sqrt(tau_s / 3.0);
+    case NoiseTerm::kRateRamp:
+      return v * tau_s / std::sqrt(2.0);
+  }
+  return 0.0;
+}
+
+std::string Cell(const TermEstimate& e, double factor) {
+  if (e.value) {
+    return fmt::format("{} [{}, {}]",
+                       Significant(*e.value * factor, 4),
+                       Significant(e.lo * factor, 3),
+                       Significant(e.hi * factor, 3));
+  }
+  if (e.upper_bound > 0.0) {
+    std::string s =
+        fmt::format("not measured: < {}", Significant(e.upper_bound * factor, 3));
+    if (e.status == TermStatus::kMasked) s += " (below its neighbours)";
+    if (e.record_needed_s)
+      s += fmt::format("; record \u2265 {:.1f} h", *e.record_needed_s / 3600);
+    return s;
+  }
+  return "not measured";
+}
+
+std::string TermsTable(const SensorNoise& s, bool gyro) {
+  Table t("noise-terms");
+  t.Header({gyro ? "gyroscope" : "accelerometer", "unit", "x", "y", "z"});
+  for (int i = 0; i < kNoiseTermCount; ++i) {
+    const NoiseTerm term = static_cast<NoiseTerm>(i);
+    bool any = false;
+    for (const AxisNoise& a : s.axes) any = any || a.term(term).value.has_value();
+    if (!any && (term == NoiseTerm::kQuantisation || term == NoiseTerm::kRateRamp))
+      continue;
+    std::vector<std::string> si = {TermName(term), noise_units::SiUnit(term, gyro)};
+    for (const AxisNoise& a : s.axes) si.push_back(Cell(a.term(term), 1.0));
+    t.Row(si);
+    const noise_units::DatasheetValue unit = noise_units::ToDatasheet(term, gyro, 1.0);
+    if (unit.unit[0] == '\0') continue;
+    std::vector<std::string> ds = {"", unit.unit};
+    for (const AxisNoise& a : s.axes) ds.push_back(Cell(a.term(term), unit.value));
+    t.Row(ds);
+  }
+  return t.Finish();
+}
+
+std::string AllanPlot(const AxisNoise& a, bool gyro, int axis) {
+  LinePlotSpec spec;
+  spec.log_x = true;
+  spec.log_y = true;
+  const std::string unit = gyro ? "rad/s" : "m/s\u00b2";
+  spec.aria_label = fmt::format("Allan deviation of the {} {} axis",
+                                gyro ? "gyroscope" : "accelerometer",
+                                kAxis[axis]);
+  spec.axes = {"cluster time \u03c4 (s)", fmt::format("Allan deviation ({})", unit)};
+  FillBetween band;
+  Series adev{"Allan deviation", {}, {}, StandardStyle(0), true, true};
+  adev.style.marker = MarkerShape::kCircle;
+  for (const AllanPoint& p : a.curve) {
+    band.x.push_back(p.tau_s);
+    band.lo.push_back(p.adev_lo);
+    band.hi.push_back(p.adev_hi);
+    adev.x.push_back(p.tau_s);
+    adev.y.push_back(p.adev);
+  }
+  spec.fills.push_back(band);
+  spec.series.push_back(adev);
+  if (a.curve.empty()) return LinePlot(spec);
+  // Each measured term alone, dashed, and their sum, over the whole curve.
+  Series sum{"sum of the fitted terms", {}, {}, StandardStyle(1), true, false};
+  int style = 2;
+  for (int i = 0; i < kNoiseTermCount; ++i) {
+    const TermEstimate& e = a.terms[i];
+    if (!e.value) continue;
+    Series line{
+        fmt::format(
+            "{} = {}", TermName(static_cast<NoiseTerm>(i)), Significant(*e.value, 3)),
+        {},
+        {},
+        StandardStyle(style++),
+        true,
+        false};
+    line.style.dash = "5,4";
+    for (const AllanPoint& p : a.curve) {
+      line.x.push_back(p.tau_s);
+      line.y.push_back(TermAdev(static_cast<NoiseTerm>(i), *e.value, p.tau_s));
+    }
+    spec.series.push_back(line);
+  }
+  for (const AllanPoint& p : a.curve) {
+    sum.x.push_back(p.tau_s);
+    sum.y.push_back(std::sqrt(a.FittedAvar(p.tau_s)));
+  }
+  spec.series.push_back(sum);
+  spec.y_include = Interval{a.curve.front().adev_lo, a.curve.front().adev_hi};
+  return LinePlot(spec);
+}
+
+}  // namespace
+
+std::string NoiseSection(const NoiseFile& f) {
+  const NoiseResult& r = f.result;
+  std::string html = "<section id=\"noise\">\n<h2>Noise</h2>\n";
+  html += Paragraph(fmt::format(
+      "{}: {:.2f} h at {:.6g} Hz, {} samples ({}). Overlapping Allan deviation with its "
+      "{:.0f} % "
+      "confidence band (equivalent degrees of freedom of the overlapping estimator for "
+      "the noise "
+      "type that dominates at each \u03c4); the terms fitted in the variance domain, "
+      "each only where "
+      "it dominates the curve. Densities are continuous-time: per sample \u03c3 = "
+      "N\u00b7\u221arate.",
+      f.input,
+      r.record_s / 3600.0,
+      r.rate_hz,
+      r.samples,
+      r.segment.kind == NoiseSegmentKind::kWholeRecord ? "the whole record"
+                                                       : "the longest still part",
+      100.0 * f.confidence));
+  for (const bool gyro : {false, true}) {
+    const SensorNoise* s =
+        gyro ? (r.gyro_radps ? &*r.gyro_radps : nullptr) : &r.accel_mps2;
+    if (!s) continue;
+    html += fmt::format("<h3>{}</h3>\n", gyro ? "Gyroscope" : "Accelerometer");
+    html += TermsTable(*s, gyro);
+    for (int axis = 0; axis < 3; ++axis) {
+      html +=
+          Figure(AllanPlot(s->axes[axis], gyro, axis),
+                 fmt::format(
+                     "Allan deviation of the {} {} axis, its confidence band, the fitted "
+                     "terms (dashed) and their sum.",
+                     gyro ? "gyroscope" : "accelerometer",
+                     kAxis[axis]));
+    }
+  }
+  return html + "</section>\n";
+}
+
+}  // namespace mpcal::report

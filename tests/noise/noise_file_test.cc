@@ -1,0 +1,126 @@
+// The noise files: the JSON read back as written, and Kalibr's YAML with the
+// measured values, the rule across axes and upper bounds labelled.
+#include <cmath>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "mpcal/error.h"
+#include "mpcal/noise.h"
+#include "mpcal/noise_file.h"
+
+namespace mpcal {
+namespace {
+
+using testing::HasSubstr;
+
+TermEstimate Measured(double v) {
+  TermEstimate e;
+  e.status = TermStatus::kMeasured;
+  e.value = v;
+  e.lo = 0.9 * v;
+  e.hi = 1.1 * v;
+  e.tau_lo_s = 0.01;
+  e.tau_hi_s = 1.0;
+  return e;
+}
+
+TermEstimate Bound(double ub, double needed_s) {
+  TermEstimate e;
+  e.status = TermStatus::kNotSeen;
+  e.upper_bound = ub;
+  e.record_needed_s = needed_s;
+  return e;
+}
+
+NoiseResult Example(bool gyro_walk_measured) {
+  NoiseResult r;
+  r.rate_hz = 200.0;
+  r.sample_period_s = 0.005;
+  r.record_s = 7200.0;
+  r.samples = 1440000;
+  r.segment.end = r.samples;
+  SensorNoise a, g;
+  for (int i = 0; i < 3; ++i) {
+    a.axes[i].terms[1] = Measured(1e-3 * (1 + i));  // white noise: largest on z
+    a.axes[i].terms[3] = Measured(2e-5 * (3 - i));  // random walk: largest on x
+    g.axes[i].terms[1] = Measured(1e-4 * (1 + 0.1 * i));
+    g.axes[i].terms[3] =
+        gyro_walk_measured ? Measured(3e-6) : Bound(5e-6 * (1 + i), 30000.0);
+    for (AxisNoise* ax : {&a.axes[i], &g.axes[i]}) {
+      AllanPoint p;
+      p.tau_s = 0.005;
+      p.m = 1;
+      p.avar = 4e-6;
+      p.adev = 2e-3;
+      p.adev_lo = 1.9e-3;
+      p.adev_hi = 2.1e-3;
+      p.edf = 1e6;
+      ax->curve.push_back(p);
+    }
+  }
+  r.accel_mps2 = a;
+  r.gyro_radps = g;
+  return r;
+}
+
+TEST(NoiseJson, ReadsBackWhatItWrote) {
+  const NoiseResult r = Example(false);
+  const std::string text = NoiseJson(r, "still.csv", 0.95);
+  EXPECT_THAT(text, HasSubstr("\"format\": \"mpcal.noise/1\""));
+  EXPECT_THAT(text, HasSubstr("\"white_noise_mps2_per_rthz\""));
+  EXPECT_THAT(text, HasSubstr("\"random_walk_radps2_per_rthz\""));
+  const NoiseFile f = ParseNoiseJson(text, "test");
+  EXPECT_EQ(f.input, "still.csv");
+  EXPECT_DOUBLE_EQ(f.result.rate_hz, 200.0);
+  ASSERT_TRUE(f.result.gyro_radps.has_value());
+  EXPECT_DOUBLE_EQ(*f.result.accel_mps2.axes[2].term(NoiseTerm::kWhiteNoise).value, 3e-3);
+  const TermEstimate& k = f.result.gyro_radps->axes[1].term(NoiseTerm::kRandomWalk);
+  EXPECT_EQ(k.status, TermStatus::kNotSeen);
+  EXPECT_FALSE(k.value.has_value());
+  EXPECT_DOUBLE_EQ(k.upper_bound, 1e-5);
+  EXPECT_DOUBLE_EQ(*k.record_needed_s, 30000.0);
+  ASSERT_EQ(f.result.accel_mps2.axes[0].curve.size(), 1u);
+  EXPECT_DOUBLE_EQ(f.result.accel_mps2.axes[0].curve[0].adev_hi, 2.1e-3);
+}
+
+TEST(NoiseJson, RefusesAnotherFormat) {
+  EXPECT_THROW(ParseNoiseJson("{\"format\": \"mpcal.noise/2\"}", "x"), Error);
+  EXPECT_THROW(ParseNoiseJson("{\"format\": \"mpcal.accelerometer/1\"}", "x"), Error);
+  EXPECT_THROW(ParseNoiseJson("[]", "x"), Error);
+}
+
+TEST(KalibrYaml, LargestAxisOfMeasuredValues) {
+  const KalibrFile k = KalibrYaml(Example(true), "still.csv", "/imu0");
+  EXPECT_THAT(k.text, HasSubstr("accelerometer_noise_density: 3.000000e-03"));
+  EXPECT_THAT(k.text, HasSubstr("accelerometer_random_walk: 6.000000e-05"));
+  EXPECT_THAT(k.text, HasSubstr("gyroscope_noise_density: 1.200000e-04"));
+  EXPECT_THAT(k.text, HasSubstr("gyroscope_random_walk: 3.000000e-06"));
+  EXPECT_THAT(k.text, HasSubstr("update_rate: 200"));
+  EXPECT_THAT(k.text, HasSubstr("rostopic: /imu0"));
+  EXPECT_THAT(k.text, HasSubstr("# Rule across axes: the largest of x, y, z"));
+  EXPECT_THAT(k.text, HasSubstr("from axis z"));
+  EXPECT_THAT(k.text, testing::Not(HasSubstr("UPPER BOUND")));
+  EXPECT_EQ(k.accel_noise_density.axis, 2);
+  EXPECT_EQ(k.accel_random_walk.axis, 0);
+  EXPECT_FALSE(k.gyro_random_walk.upper_bound);
+}
+
+TEST(KalibrYaml, RandomWalkNotMeasuredIsItsBoundLabelled) {
+  const KalibrFile k = KalibrYaml(Example(false), "still.csv", "/imu0");
+  EXPECT_TRUE(k.gyro_random_walk.upper_bound);
+  EXPECT_DOUBLE_EQ(k.gyro_random_walk.value, 1.5e-5);
+  EXPECT_THAT(k.text, HasSubstr("gyroscope_random_walk: 1.500000e-05  #  UPPER BOUND"));
+  EXPECT_THAT(k.text, HasSubstr("NOT MEASURED"));
+  EXPECT_THAT(k.text, HasSubstr("record at least 8.3 h"));
+}
+
+TEST(KalibrYaml, NeedsAGyroscope) {
+  NoiseResult r = Example(true);
+  r.gyro_radps.reset();
+  EXPECT_THROW(KalibrYaml(r, "a.csv", "/imu0"), Error);
+}
+
+}  // namespace
+}  // namespace mpcal
