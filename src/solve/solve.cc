@@ -38,6 +38,11 @@ constexpr double kMadToSigma = 1.4826;
 // session itself is bad, and hiding that would mislead.
 constexpr double kMaxOutlierShare = 0.2;
 
+// A position this many times its own noise level off the fit is a bump, not
+// part of a heavy-tailed scatter, when it also stands out from the scatter
+// model by the outlier threshold.
+constexpr double kOwnNoiseOutlier = 10.0;
+
 struct Blocks {
   double bias[3];
   double scale[3];
@@ -120,6 +125,15 @@ ceres::Solver::Summary RunSolver(const SolveOptions& options, ceres::Problem& pr
   return summary;
 }
 
+// The diagonal of the hat matrix J (JᵀJ)⁻¹ Jᵀ of a whitened Jacobian: how
+// much each position pulls the fit towards itself (they sum to p).
+std::vector<double> Leverages(const Eigen::MatrixXd& j) {
+  const Eigen::MatrixXd hat = j * (j.transpose() * j).ldlt().solve(j.transpose());
+  std::vector<double> h(static_cast<std::size_t>(j.rows()));
+  for (Eigen::Index k = 0; k < j.rows(); ++k) h[static_cast<std::size_t>(k)] = hat(k, k);
+  return h;
+}
+
 // The positions one fit uses, with the noise of each made safe to weigh by.
 struct FitInput {
   std::vector<std::size_t> index;  // into the caller's positions
@@ -167,10 +181,11 @@ class Fit {
     // estimate plus the scatter of the positions that noise leaves
     // unexplained (zero for white noise, dominant on many real recordings).
     sigmas_ = Sigmas(blocks_.Model());
+    own_sigmas_ = sigmas_;
     std::vector<double> residuals;
     for (std::size_t k = 0; k < input_.positions.size(); ++k) residuals.push_back(Residual(k));
-    scatter_variance_ = internal::PositionScatterVariance(
-        residuals, sigmas_, ParameterCount(options_.model));
+    scatter_variance_ =
+        internal::PositionScatterVariance(residuals, sigmas_, Leverages(Jacobian()));
     for (double& sigma : sigmas_) sigma = std::sqrt(sigma * sigma + scatter_variance_);
     std::vector<double> whitened_abs;
     for (std::size_t k = 0; k < input_.positions.size(); ++k) {
@@ -239,6 +254,9 @@ class Fit {
   }
 
   ErrorModel Estimate() const { return blocks_.Model(); }
+  /// σ of each position's residual from its sensor noise alone, without the
+  /// scatter component.
+  const std::vector<double>& own_sigmas() const { return own_sigmas_; }
   double scatter_variance() const { return scatter_variance_; }
   const std::vector<double>& sigmas() const { return sigmas_; }
   const ceres::Solver::Summary& summary() const { return summary_; }
@@ -284,6 +302,7 @@ class Fit {
   SolveOptions options_;
   Blocks blocks_;
   std::vector<double> sigmas_;
+  std::vector<double> own_sigmas_;
   double loss_scale_ = 1.0;
   double scatter_variance_ = 0.0;
   std::unique_ptr<ceres::Problem> problem_;
@@ -303,19 +322,28 @@ FitInput Select(std::span<const PositionObservation> positions,
   return in;
 }
 
-// Each used position's residual in units of its own noise level, corrected
-// for the pull it has on the fit (leverage h: var(e_k) = σ_k² (1 − h_k)).
-std::vector<double> Standardised(Fit& fit, std::size_t count) {
-  const Eigen::MatrixXd j = fit.Jacobian();
-  const Eigen::MatrixXd hat =
-      j * (j.transpose() * j).ldlt().solve(j.transpose());
-  std::vector<double> z(count);
+// Each used position's residual in units of its standard deviation under
+// the scatter model (σ_k² + τ², `total`) and under its sensor noise alone
+// (σ_k², `own`), corrected for the pull it has on the fit (leverage h:
+// var(e_k) = σ² (1 − h_k)).
+struct StandardisedResiduals {
+  std::vector<double> total;
+  std::vector<double> own;
+};
+
+StandardisedResiduals Standardise(Fit& fit, std::size_t count) {
+  const std::vector<double> leverage = Leverages(fit.Jacobian());
+  StandardisedResiduals z;
   for (std::size_t k = 0; k < count; ++k) {
-    const double h = std::clamp(hat(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)),
-                                0.0, 0.999);
-    z[k] = fit.Residual(k) / (fit.sigmas()[k] * std::sqrt(1.0 - h));
+    const double root = std::sqrt(1.0 - std::clamp(leverage[k], 0.0, 0.999));
+    z.total.push_back(fit.Residual(k) / (fit.sigmas()[k] * root));
+    z.own.push_back(fit.Residual(k) / (fit.own_sigmas()[k] * root));
   }
   return z;
+}
+
+std::vector<double> Standardised(Fit& fit, std::size_t count) {
+  return Standardise(fit, count).total;
 }
 
 }  // namespace
@@ -402,14 +430,30 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   int excluded = 0;
   while (options.exclude_outliers && excluded < max_excluded) {
     const FitInput in = Select(positions, noise, result.used);
-    const std::vector<double> z = Standardised(*fit, in.positions.size());
+    // Against the scatter model σ_k² + τ², beyond a robust scale of the
+    // rest (the MAD of the standardised residuals, never below 1); and a
+    // position more than kOwnNoiseOutlier times its own noise level that
+    // stands out from the scatter model goes whatever that robust scale
+    // (residuals heavier-tailed than the scatter model must not shelter it).
+    const StandardisedResiduals z = Standardise(*fit, in.positions.size());
+    if (z.total.empty()) break;
     std::vector<double> abs_z;
-    for (double v : z) abs_z.push_back(std::abs(v));
+    for (double v : z.total) abs_z.push_back(std::abs(v));
     const double scale = std::max(1.0, kMadToSigma * Median(abs_z));
-    const auto worst = std::max_element(abs_z.begin(), abs_z.end()) - abs_z.begin();
-    if (abs_z[worst] <= options.outlier_threshold * scale) break;
+    std::size_t worst = 0;
+    double worst_excess = 0.0;
+    for (std::size_t j = 0; j < abs_z.size(); ++j) {
+      const bool far_beyond_own_noise = std::abs(z.own[j]) > kOwnNoiseOutlier;
+      const double excess =
+          abs_z[j] / (options.outlier_threshold * (far_beyond_own_noise ? 1.0 : scale));
+      if (excess > worst_excess) {
+        worst = j;
+        worst_excess = excess;
+      }
+    }
+    if (worst_excess <= 1.0) break;
 
-    const std::size_t k = in.index[static_cast<std::size_t>(worst)];
+    const std::size_t k = in.index[worst];
     result.used[k] = false;
     auto refit = std::make_unique<Fit>(Select(positions, noise, result.used),
                                        fit->Estimate(), options);
@@ -421,13 +465,13 @@ SolveResult Solve(std::span<const PositionObservation> positions,
       result.warnings.push_back(fmt::format(
           "position {} ({:.1f}-{:.1f} s) fits badly ({:.1f} times its noise) but cannot "
           "be excluded: no other position determines the same parameters",
-          k + 1, positions[k].start_s, positions[k].end_s, abs_z[worst]));
+          k + 1, positions[k].start_s, positions[k].end_s, std::abs(z.own[worst])));
       break;
     }
     result.warnings.push_back(fmt::format(
         "position {} ({:.1f}-{:.1f} s) excluded as an outlier: its residual is {:.1f} times "
         "its noise level (was the sensor bumped or not fully still?)",
-        k + 1, positions[k].start_s, positions[k].end_s, abs_z[worst]));
+        k + 1, positions[k].start_s, positions[k].end_s, std::abs(z.own[worst])));
     fit = std::move(refit);
     result.iterations += fit->iterations();
     ++excluded;

@@ -45,42 +45,58 @@ double ResidualSigma(const ErrorModel& model, const Eigen::Vector3d& mean_mps2,
   return std::sqrt(variance);
 }
 
+double ChiSquare1MedianQuantile(std::size_t count, double alpha) {
+  // P(median > x) = P(fewer than rank + 1 of the count values are <= x)
+  // = Σ_{i <= rank} C(count, i) F^i (1 − F)^(count − i), F the χ²₁ CDF.
+  const std::size_t rank = count / 2;
+  auto tail = [&](double x) {
+    const double f = std::erf(std::sqrt(x / 2.0));
+    double sum = 0.0;
+    for (std::size_t i = 0; i <= rank; ++i) {
+      const double log_term = std::lgamma(count + 1.0) - std::lgamma(i + 1.0) -
+                              std::lgamma(count - i + 1.0) + i * std::log(f) +
+                              (count - i) * std::log1p(-f);
+      sum += std::exp(log_term);
+    }
+    return sum;
+  };
+  double lo = 0.0;
+  double hi = 50.0;
+  for (int i = 0; i < 200 && hi - lo > 1e-12; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (tail(mid) > alpha ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 double PositionScatterVariance(const std::vector<double>& residuals_mps2,
-                               const std::vector<double>& sigmas_mps2, int parameters) {
-  // Median of the χ² distribution with one degree of freedom.
-  constexpr double kChiSquare1Median = 0.454936;
+                               const std::vector<double>& sigmas_mps2,
+                               const std::vector<double>& leverages) {
   const std::size_t count = residuals_mps2.size();
-  // The median of a few residuals cannot tell a scatter from chance (a
-  // white-noise session of 15 positions once passed the test below); with
-  // little redundancy the variance factor is the only safeguard.
-  constexpr std::size_t kMinRedundancy = 10;
-  if (count < static_cast<std::size_t>(parameters) + kMinRedundancy) return 0.0;
-  const double target = kChiSquare1Median * static_cast<double>(count - parameters) /
-                        static_cast<double>(count);
+  double parameters = 0.0;
+  for (double h : leverages) parameters += h;
+  if (static_cast<double>(count) - parameters < kMinScatterRedundancy - 0.5) return 0.0;
   auto median_ratio = [&](double tau2) {
     std::vector<double> q(count);
     for (std::size_t k = 0; k < count; ++k) {
+      const double h = std::clamp(leverages[k], 0.0, 0.999);
       q[k] = residuals_mps2[k] * residuals_mps2[k] /
-             (sigmas_mps2[k] * sigmas_mps2[k] + tau2);
+             ((sigmas_mps2[k] * sigmas_mps2[k] + tau2) * (1.0 - h));
     }
     std::nth_element(q.begin(), q.begin() + count / 2, q.end());
     return q[count / 2];
   };
-  // Only on clear evidence. The sample median of K χ²₁ values scatters by
-  // about 2.33/√K of itself, with a heavier right tail than a Gaussian: over
-  // 200 white-noise sessions of 15-31 positions (mpcal_accuracy_bench) the
-  // ratio below reached 3.4, while the real Xsens recording gives 17.8. Ten
-  // such spreads (4.8 for K = 38, 5.4 for K = 28) separate the two.
-  constexpr double kEvidenceSigmas = 10.0;
-  const double evidence_ratio =
-      1.0 + kEvidenceSigmas * 2.33 / std::sqrt(static_cast<double>(count));
-  if (median_ratio(0.0) <= evidence_ratio * target) return 0.0;
+  if (median_ratio(0.0) <= ChiSquare1MedianQuantile(count, kScatterSignificance)) return 0.0;
   // The ratio falls monotonically with τ²: bisect between 0 and the largest
-  // squared residual over the target, which brings every r²/(σ² + τ²), and
-  // so their median, below the target.
+  // squared residual over the target, which brings every ratio, and so
+  // their median, below the target.
+  const double target = kChiSquare1Median;
   double lo = 0.0;
   double hi = 0.0;
-  for (double r : residuals_mps2) hi = std::max(hi, r * r / target);
+  for (std::size_t k = 0; k < count; ++k) {
+    const double h = std::clamp(leverages[k], 0.0, 0.999);
+    hi = std::max(hi, residuals_mps2[k] * residuals_mps2[k] / (target * (1.0 - h)));
+  }
   for (int i = 0; i < 100 && hi - lo > 1e-12 * hi; ++i) {
     const double mid = 0.5 * (lo + hi);
     (median_ratio(mid) > target ? lo : hi) = mid;

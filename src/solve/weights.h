@@ -24,17 +24,38 @@ std::vector<Eigen::Vector3d> UsableNoise(std::span<const PositionObservation> po
 double ResidualSigma(const ErrorModel& model, const Eigen::Vector3d& mean_mps2,
                      const Eigen::Vector3d& noise_mps2, std::size_t samples);
 
+/// Median of the χ² distribution with one degree of freedom.
+inline constexpr double kChiSquare1Median = 0.454936;
+
+/// The value the sample median of `count` independent χ²₁ variables (the
+/// element of rank count/2 from zero, as std::nth_element picks it) exceeds
+/// with probability `alpha`: exact, from the binomial count of values below
+/// it.
+double ChiSquare1MedianQuantile(std::size_t count, double alpha);
+
 /// The variance τ² (m/s²)² of a scatter of the positions that their sensor
 /// noise does not explain — hand tremor, non-white noise, model error —
 /// added to every position's variance: σ_k² + τ². A variance component
 /// (Förstner 1979) estimated robustly, so that one bumped position cannot
-/// inflate it and hide itself: the median of r_k²/(σ_k² + τ²) is matched to
-/// that of χ²₁ (scaled by (K − p)/K for the fitted parameters). Zero unless
-/// the residuals show more scatter than the noise explains by ten times the
-/// sampling spread of that median, so that white-noise sessions keep their
-/// efficient weights, and zero with fewer than 10 redundant positions
-/// (K − p < 10), whose median is too uncertain to tell.
+/// inflate it and hide itself: the median of r_k²/((σ_k² + τ²)(1 − h_k)),
+/// h_k the position's leverage, is matched to that of χ²₁.
+///
+/// Estimated only on evidence, by a test at 1 %: the median of the
+/// standardised squares r_k²/(σ_k²(1 − h_k)) must exceed what the median of
+/// K independent χ²₁ values exceeds once in 100 sessions of white noise
+/// (ChiSquare1MedianQuantile). The median, not the χ² sum, so that one
+/// outlier cannot pass the test for the rest; the exact quantile, so that
+/// the test holds at any number of positions (at least
+/// kMinScatterRedundancy redundant ones). Zero otherwise: white-noise
+/// sessions keep their efficient weights.
 double PositionScatterVariance(const std::vector<double>& residuals_mps2,
-                               const std::vector<double>& sigmas_mps2, int parameters);
+                               const std::vector<double>& sigmas_mps2,
+                               const std::vector<double>& leverages);
+
+/// Fewer redundant positions (K − p) than this never show a scatter: the
+/// median of so few residuals says too little.
+inline constexpr int kMinScatterRedundancy = 5;
+/// Significance of the scatter test.
+inline constexpr double kScatterSignificance = 0.01;
 
 }  // namespace mpcal::internal

@@ -89,11 +89,11 @@ TEST(Solve, ReachesTheCramerRaoBound) {
 }
 
 // Fourteen positions whose means scatter 1.9 times more than their noise
-// says (chance does this to 1 session in 2000): the five residuals of the
-// fit do not outweigh the noise measured from every sample, so the 1σ grows
-// by the updated variance factor, sqrt((10 + χ²) / (10 + 5)), not by the
-// raw sqrt(χ² / 5); and no variance component is read from five residuals.
-TEST(Solve, AFewResidualsScatteringByChanceDoNotDoubleTheReported1Sigma) {
+// says: five residuals are enough evidence when the median of their
+// standardised squares is far beyond chance (the scatter test at 1 %), and
+// the 1σ then follows the real scatter, not the understated noise, nor
+// twice it.
+TEST(Solve, FourteenPositionsScatteringTwiceTheirNoiseGetAnHonest1Sigma) {
   std::mt19937_64 rng(11);
   const ErrorModel truth = ConsumerGrade();
   std::vector<Eigen::Vector3d> directions;
@@ -103,30 +103,18 @@ TEST(Solve, AFewResidualsScatteringByChanceDoNotDoubleTheReported1Sigma) {
   ASSERT_EQ(directions.size(), 14u);
   constexpr double kExcess = 1.9;
   auto session = MakeSession(truth, Tilted(directions, 0.1, rng), kExcess * kNoise, kSamples, rng);
+  const Eigen::Matrix<double, 9, 1> real_bound =
+      CramerRaoBound(truth, session.bound_positions, kTestGravityMps2).diagonal().cwiseSqrt();
   for (auto& p : session.positions) p.sample_std_mps2 /= kExcess;
-  for (auto& b : session.bound_positions) b.noise_std_mps2 /= kExcess;
   const SolveResult r = Solve(session.positions, SolveOptions{});
   ASSERT_TRUE(r.converged()) << r.message;
-  EXPECT_EQ(r.position_scatter_mps2, 0.0);
-  ASSERT_GT(r.variance_factor, 2.0);  // the seed gives a clear excess
-  const double chi2 = r.variance_factor * 5.0;
-  const double expected = std::sqrt((10.0 + chi2) / 15.0);
-  const Eigen::Matrix<double, 9, 1> bound =
-      CramerRaoBound(truth, session.bound_positions, kTestGravityMps2).diagonal().cwiseSqrt();
-  const Eigen::Matrix<double, 9, 1> ratio = ToVector(r.std).cwiseQuotient(bound);
+  EXPECT_GT(r.position_scatter_mps2, 0.0);
+  const Eigen::Matrix<double, 9, 1> ratio = ToVector(r.std).cwiseQuotient(real_bound);
   for (int i = 0; i < 9; ++i) {
-    // The unscaled covariance is the bound's to a few % (efficiency).
-    EXPECT_NEAR(ratio[i], expected, 0.08 * expected) << kParameterNames[i];
+    // Five residuals estimate the scatter to about ±1/sqrt(2·5) of itself.
+    EXPECT_GT(ratio[i], 0.6) << kParameterNames[i];
+    EXPECT_LT(ratio[i], 1.8) << kParameterNames[i];
   }
-}
-
-TEST(PositionScatterVariance, NeedsTenRedundantPositions) {
-  // Every residual five times its σ: a clear scatter, if there are enough.
-  const std::vector<double> few(15, 5e-3), many(19, 5e-3);
-  EXPECT_EQ(internal::PositionScatterVariance(few, std::vector<double>(15, 1e-3), 9), 0.0);
-  const double tau2 = internal::PositionScatterVariance(many, std::vector<double>(19, 1e-3), 9);
-  // The median of r²/(σ² + τ²) matches χ²₁'s, scaled by (K − p)/K.
-  EXPECT_NEAR(25e-6 / (1e-6 + tau2), 0.454936 * 10.0 / 19.0, 1e-6);
 }
 
 TEST(Solve, SixParameterModelHoldsTheAnglesAtZero) {
