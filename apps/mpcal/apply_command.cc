@@ -4,9 +4,11 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include <fmt/format.h>
 
+#include "calibration_table.h"
 #include "cli_options.h"
 #include "command.h"
 #include "mpcal/apply.h"
@@ -38,15 +40,38 @@ void RunApply(CLI::App& cmd, ApplyFlags& flags) {
   // A log from the calibrated sensor is in the calibration's units unless
   // the user says otherwise.
   if (cmd.count("--units") == 0) options.log.units = calibration.input_units;
+  // And read as the log it was made from (columns, time unit, rate), unless
+  // the user says otherwise: no flags to repeat for logs of the same logger.
+  if (calibration.input_layout && cmd.count("--columns") == 0 &&
+      cmd.count("--time-unit") == 0 && cmd.count("--rate") == 0) {
+    const Calibration::InputLayout& layout = *calibration.input_layout;
+    options.log.columns = layout.columns;
+    if (const auto unit = ParseTimeUnit(layout.time_unit)) options.log.time_unit = *unit;
+    options.log.rate_hz = layout.rate_hz;
+  }
   options.out_units = flags.out_units;
   TerminalProgress progress("applying " + flags.calibration + " to " + flags.input);
   options.log.progress = progress.Callback();
-  const ApplyResult result =
-      ApplyCalibration(calibration, flags.input, flags.output, options);
+  const ApplyResult result = [&] {
+    try {
+      return ApplyCalibration(calibration, flags.input, flags.output, options);
+    } catch (const Error& e) {
+      // A log of another logger: the recorded columns do not fit it; read it
+      // as any log (the header's names, or t,ax,ay,az).
+      if (!calibration.input_layout || options.log.columns.empty() ||
+          std::string_view(e.what()).rfind("--columns", 0) != 0 ||
+          cmd.count("--columns") > 0) {
+        throw;
+      }
+      ApplyOptions plain = options;
+      plain.log.columns = flags.options.log.columns;
+      plain.log.time_unit = flags.options.log.time_unit;
+      plain.log.rate_hz = flags.options.log.rate_hz;
+      return ApplyCalibration(calibration, flags.input, flags.output, plain);
+    }
+  }();
   progress.Done();
-  for (const std::string& warning : result.warnings) {
-    fmt::print(stderr, "mpcal: warning: {}\n", warning);
-  }
+  PrintWarnings(result.warnings);
   // Standard output may be the corrected log itself: the summary goes there
   // only when the log went to a file.
   if (flags.output != "-") {
@@ -74,6 +99,7 @@ void AddApplyCommand(CLI::App& root) {
   cmd->add_option("INPUT", flags->input, "Log to correct ('-': standard input)")->required();
   cmd->add_option("-o,--output", flags->output,
                   "Corrected log ('-': standard output); written whole or not at all")
+      ->check(OutputPath)
       ->required();
   AddLogOptions(*cmd, flags->options.log);
   const std::vector<std::pair<std::string, AccelUnits>> out_units{{"mps2", AccelUnits::kMps2},
@@ -87,8 +113,11 @@ void AddApplyCommand(CLI::App& root) {
       "Example:\n"
       "  mpcal apply calib.json session.csv -o corrected.csv\n"
       "  logger | mpcal apply calib.json - -o - --out-units g | plot\n"
-      "The log is read with the calibration's units unless --units is given; a log whose\n"
-      "magnitude at rest is far from the calibration's gravity gets a warning.");
+      "The log is read with the calibration's units unless --units is given, and with the\n"
+      "columns, time unit and rate the calibration was made with unless --columns,\n"
+      "--time-unit or --rate is given; a log whose magnitude at rest is far from the\n"
+      "calibration's gravity gets a warning. With --out-units g, unit labels in the\n"
+      "header's accelerometer names follow ('(m/s^2)' becomes '(g)').");
   cmd->callback([cmd, flags] { RunApply(*cmd, *flags); });
 }
 

@@ -1,5 +1,7 @@
 // mpcal calibrate: a raw log in, a calibration file and a table out.
+#include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
@@ -37,6 +39,38 @@ std::string DescribeOptions(const CalibrateFlags& f) {
       f.log.columns.empty() ? "" : " --columns " + f.log.columns);
 }
 
+// How the log was read, for the calibration file, so that 'mpcal apply'
+// reads logs of the same logger alike without the flags repeated. Found
+// again from the log's first lines (a regular file only: standard input and
+// pipes cannot be read twice).
+std::optional<Calibration::InputLayout> RecordedLayout(const std::string& input,
+                                                       const LogOptions& options) {
+  std::error_code ec;
+  if (input == "-" || !std::filesystem::is_regular_file(input, ec)) return std::nullopt;
+  LogOptions quiet = options;
+  quiet.progress = nullptr;
+  const LogScanner scanner(input, quiet);
+  const LogLayout& layout = scanner.layout();
+  auto name = [&](int column) {
+    const std::string& n = layout.column_names[static_cast<std::size_t>(column)];
+    const bool usable = layout.header_line > 0 && !n.empty() &&
+                        n.find_first_of(",=") == std::string::npos;
+    return usable ? n : std::to_string(column);
+  };
+  std::string columns;
+  if (layout.time_column >= 0) columns = "t=" + name(layout.time_column);
+  static constexpr const char* kKeys[] = {"ax", "ay", "az"};
+  for (int i = 0; i < 3; ++i) {
+    columns += fmt::format("{}{}={}", columns.empty() ? "" : ",", kKeys[i],
+                           name(layout.accel_columns[static_cast<std::size_t>(i)]));
+  }
+  Calibration::InputLayout out;
+  out.columns = columns;
+  out.time_unit = std::string(ToString(layout.time_unit));
+  if (layout.time_unit == TimeUnit::kSampleIndex) out.rate_hz = options.rate_hz;
+  return out;
+}
+
 void Run(CalibrateFlags& f) {
   if (!f.output.empty()) CheckOutput(f.output, {f.input});
   f.calibrate.solve.gravity_mps2 = f.gravity.Resolve();
@@ -48,9 +82,13 @@ void Run(CalibrateFlags& f) {
   progress.Done();
   PrintWarnings(recording.warnings);
 
+  if (f.calibrate.counts_per_g > 0.0 && f.log.units != AccelUnits::kCounts) {
+    throw Error("--counts-per-g is the scale of raw counts: it goes with --units counts");
+  }
   CalibrateResult result = CalibrateRecording(recording, f.calibrate);
   result.calibration.provenance =
       Provenance{MPCAL_VERSION, f.input, DescribeOptions(f)};
+  result.calibration.input_layout = RecordedLayout(f.input, f.log);
 
   fmt::print("{}: {} rows, {:.1f} s; model {}, gravity {:.5f} m/s2\n", f.input,
              recording.size(), recording.time_s.back() - recording.time_s.front(),
@@ -80,7 +118,8 @@ void AddCalibrateCommand(CLI::App& root) {
       ->required();
   app->add_option("-o,--output", flags->output,
                   "Calibration file to write (JSON, mpcal.accelerometer/1); without it, "
-                  "only print");
+                  "only print")
+      ->check(OutputPath);
   AddLogOptions(*app, flags->log);
   AddGravityOptions(*app, flags->gravity);
   AddCalibrateOptions(*app, flags->calibrate);
@@ -88,7 +127,8 @@ void AddCalibrateCommand(CLI::App& root) {
       "Examples:\n"
       "  mpcal calibrate session.csv -o calib.json\n"
       "  mpcal calibrate xsens_acc.mat --units counts --gravity 9.81744 -o xsens.json\n"
-      "  mpcal calibrate six_poses.csv --model bias-scale-6 --latitude 49.6 --height 300");
+      "  mpcal calibrate six_poses.csv --model bias-scale-6 --latitude 49.6 --height 300\n"
+      "  mpcal calibrate arduino_serial.txt --units counts --counts-per-g 16384 -o mpu6050.json");
   app->callback([flags] { Run(*flags); });
 }
 

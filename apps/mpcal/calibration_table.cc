@@ -99,9 +99,28 @@ std::string FormatFitSummary(const CalibrateResult& result) {
   return out;
 }
 
+namespace {
+// Warnings wait until the command has succeeded: a command that fails says
+// so in one line (main folds the first warning into it).
+std::vector<std::string>& HeldWarnings() {
+  static std::vector<std::string> held;
+  return held;
+}
+}  // namespace
+
 void PrintWarnings(const std::vector<std::string>& warnings) {
+  HeldWarnings().insert(HeldWarnings().end(), warnings.begin(), warnings.end());
+}
+
+std::vector<std::string> TakeHeldWarnings() {
+  std::vector<std::string> out;
+  out.swap(HeldWarnings());
+  return out;
+}
+
+void FlushWarnings() {
   std::fflush(stdout);
-  for (const auto& w : warnings) fmt::print(stderr, "mpcal: warning: {}\n", w);
+  for (const auto& w : TakeHeldWarnings()) fmt::print(stderr, "mpcal: warning: {}\n", w);
 }
 
 }  // namespace mpcal::cli

@@ -25,7 +25,13 @@ std::string FormatParameterTable(const Calibration& calibration,
 /// The positions found and how the fit went, a few lines.
 std::string FormatFitSummary(const CalibrateResult& result);
 
-/// Prints each warning as `mpcal: warning: ...` on stderr.
+/// Holds each warning, printed as `mpcal: warning: ...` on stderr when the
+/// command ends well (FlushWarnings); a command that fails prints only its
+/// error line, with the first warning folded into it.
 void PrintWarnings(const std::vector<std::string>& warnings);
+/// Prints the held warnings now (the command has finished its work).
+void FlushWarnings();
+/// The held warnings, emptied.
+std::vector<std::string> TakeHeldWarnings();
 
 }  // namespace mpcal::cli

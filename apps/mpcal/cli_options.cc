@@ -6,6 +6,7 @@
 
 #include "mpcal/error.h"
 #include "mpcal/gravity.h"
+#include "mpcal/plausible.h"
 
 namespace mpcal::cli {
 namespace {
@@ -28,6 +29,12 @@ CLI::Validator NumberAtLeast(bool allow_zero) {
 
 const CLI::Validator PositiveNumber = NumberAtLeast(false);
 const CLI::Validator NonNegativeNumber = NumberAtLeast(true);
+const CLI::Validator OutputPath(
+    [](const std::string& text) -> std::string {
+      return text.empty() ? "the file name is empty; give a path, or '-' for standard output"
+                          : "";
+    },
+    "PATH");
 
 void AddLogOptions(CLI::App& app, LogOptions& options) {
   const std::vector<std::pair<std::string, AccelUnits>> units{
@@ -77,7 +84,7 @@ void AddGravityOptions(CLI::App& app, GravityFlags& flags) {
   auto* g = app.add_option("--gravity", flags.gravity_mps2,
                            "Local magnitude of gravity (m/s2); default 9.80665, "
                            "the standard value the paper uses")
-                ->check(CLI::Range(9.7, 9.9))
+                ->check(CLI::Range(kMinGravityMps2, kMaxGravityMps2))
                 ->group("Gravity");
   auto* lat = app.add_option("--latitude", flags.latitude_deg,
                              "Geodetic latitude of the site (deg): use the WGS84 "
@@ -98,6 +105,13 @@ void AddCalibrateOptions(CLI::App& app, CalibrateOptions& options) {
   const std::vector<std::pair<std::string, RobustLoss>> losses{
       {"none", RobustLoss::kNone}, {"huber", RobustLoss::kHuber},
       {"cauchy", RobustLoss::kCauchy}};
+  app.add_option("--counts-per-g", options.counts_per_g,
+                 "With --units counts: the datasheet's sensitivity (e.g. 16384 for an "
+                 "MPU-6050 at +-2 g), so that scale-factor errors and biases are relative to "
+                 "the datasheet, not to the fitted sphere; the calibration file records "
+                 "which (input.scale_reference)")
+      ->check(PositiveNumber)
+      ->group("Estimation");
   app.add_option("--model", options.solve.model,
                  "Error model: shin-el-sheimy-9 (bias, scale, 3 non-orthogonality "
                  "angles; >= 10 positions) or bias-scale-6 (six-position protocol)")

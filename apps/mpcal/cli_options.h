@@ -40,6 +40,10 @@ void AddCalibrateOptions(CLI::App& app, CalibrateOptions& options);
 extern const CLI::Validator PositiveNumber;
 extern const CLI::Validator NonNegativeNumber;
 
+/// Check for an output file name: not empty (`-o ''` is a slip, not a
+/// request to write nothing).
+extern const CLI::Validator OutputPath;
+
 /// A transform from names (any case) to values: an enum, or the name itself
 /// for a string option. An unknown name gets "'tukey' is not one of: none,
 /// huber, cauchy"; CLI11's own CheckedTransformer prints its internal

@@ -213,7 +213,8 @@ void AddDetectCommand(CLI::App& root) {
   app->add_option(
       "--json",
       flags->json,
-      "Also write the intervals and the coverage as JSON (mpcal.detection/1)");
+      "Also write the intervals and the coverage as JSON (mpcal.detection/1)")
+      ->check(OutputPath);
   AddLogOptions(*app, flags->log);
   AddGravityOptions(*app, flags->gravity);
   AddCalibrateOptions(*app, flags->calibrate);

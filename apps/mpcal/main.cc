@@ -1,13 +1,20 @@
 // mpcal: field calibration of MEMS accelerometers. Dispatches to the
 // subcommands and turns every failure into one line on stderr and an exit
 // code: 1 for bad input or I/O, 2 for usage.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "calibration_table.h"
 #include "command.h"
 #include "mpcal/error.h"
 
@@ -15,7 +22,17 @@ namespace {
 
 void PrintError(const std::string& message) {
   // One line, always: multi-line messages would break scripts that grep it.
+  // Warnings held back are not printed; the first, often the cause, goes
+  // into the line.
+  const std::vector<std::string> warnings = mpcal::cli::TakeHeldWarnings();
   std::string line = message;
+  if (!warnings.empty()) {
+    line += fmt::format(" (after {}: {})",
+                        warnings.size() == 1
+                            ? std::string("a warning")
+                            : fmt::format("{} warnings, the first", warnings.size()),
+                        warnings.front());
+  }
   for (char& c : line) {
     if (c == '\n' || c == '\r') c = ' ';
   }
@@ -23,9 +40,54 @@ void PrintError(const std::string& message) {
   fmt::print(stderr, "mpcal: error: {}\n", line);
 }
 
+// A standard descriptor that was closed (`>&-`) would be taken by the next
+// file mpcal opens, and the table meant for the terminal would land in an
+// output file. Each closed one is held by /dev/null instead; returns whether
+// standard output was closed.
+bool HoldClosedStandardDescriptors() {
+  bool stdout_closed = false;
+  for (int fd = 0; fd <= 2; ++fd) {
+    if (::fcntl(fd, F_GETFD) >= 0) continue;
+    if (fd == STDOUT_FILENO) stdout_closed = true;
+    const int held = ::open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY);
+    if (held >= 0 && held != fd) ::close(held);
+  }
+  return stdout_closed;
+}
+
+// What coreutils' close_stdout does: a table or a file written to standard
+// output that did not reach it (a full disk, /dev/full, a closed pipe) is a
+// failure, not a success. Returns the exit code.
+int CloseStdout(int code) {
+  errno = 0;
+  const bool flush_failed = std::fflush(stdout) != 0;
+  const int err = errno;
+  // A command that failed has said so in its one line already.
+  if (code != 0 || (!flush_failed && std::ferror(stdout) == 0)) return code;
+  std::clearerr(stdout);
+  PrintError(flush_failed && err != 0
+                 ? fmt::format("error writing to standard output: {}", std::strerror(err))
+                 : std::string("error writing to standard output"));
+  return 1;
+}
+
+int Run(int argc, char** argv);
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (HoldClosedStandardDescriptors()) {
+    PrintError("standard output is closed; redirect it to a file or to /dev/null");
+    return 1;
+  }
+  const int code = Run(argc, argv);
+  if (code == 0) mpcal::cli::FlushWarnings();
+  return CloseStdout(code);
+}
+
+namespace {
+
+int Run(int argc, char** argv) {
   CLI::App app{
       "mpcal: field calibration of MEMS accelerometers by the multi-position method.\n"
       "Hold the sensor still in ~26 orientations; gravity's magnitude is the only reference.",
@@ -94,3 +156,5 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+}  // namespace

@@ -1,5 +1,12 @@
 // mpcal repeat: several sessions of one device (recordings or calibration
 // files) in, the paper's repeatability table and the verdict out.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -53,8 +60,75 @@ bool IsCalibrationFile(const std::string& path) {
   return false;
 }
 
-Calibration CalibrateSession(const std::string& path, RepeatFlags& f) {
-  TerminalProgress progress("reading " + path);
+// A pipe or a process substitution (`<(cat a.csv)`) can be read only once,
+// but repeat looks at each input twice: is it a calibration file, then read
+// it. Such an input is first copied to an unnamed temporary file, read from
+// there by its /proc/self/fd name.
+class SpooledInput {
+ public:
+  explicit SpooledInput(const std::string& path) : path_(path), readable_(path) {
+    struct stat st {};
+    if (path == "-" || ::stat(path.c_str(), &st) != 0 || !S_ISFIFO(st.st_mode)) return;
+    const int in = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (in < 0) return;  // the reader says why
+    spool_ = std::tmpfile();
+    if (spool_ == nullptr) {
+      ::close(in);
+      throw Error(fmt::format("cannot read '{}': no room for a temporary copy ({})", path,
+                              std::strerror(errno)));
+    }
+    Copy(in);
+    ::close(in);
+    std::fflush(spool_);
+    readable_ = fmt::format("/proc/self/fd/{}", ::fileno(spool_));
+  }
+  ~SpooledInput() {
+    if (spool_ != nullptr) std::fclose(spool_);
+  }
+  SpooledInput(const SpooledInput&) = delete;
+  SpooledInput& operator=(const SpooledInput&) = delete;
+
+  /// The name to open (the copy's, for a pipe).
+  const std::string& readable() const { return readable_; }
+  /// `message` with the copy's name replaced by the name the user gave.
+  std::string Restore(std::string message) const {
+    if (readable_ == path_) return message;
+    for (auto at = message.find(readable_); at != std::string::npos;
+         at = message.find(readable_, at + path_.size())) {
+      message.replace(at, readable_.size(), path_);
+    }
+    return message;
+  }
+
+ private:
+  void Copy(int in) {
+    std::vector<char> buffer(std::size_t{1} << 16);
+    bool first = true;
+    while (true) {
+      const ssize_t n = ::read(in, buffer.data(), buffer.size());
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      const auto size = static_cast<std::size_t>(n);
+      if (std::fwrite(buffer.data(), 1, size, spool_) != size) {
+        throw Error(fmt::format("cannot read '{}': the temporary copy failed ({})", path_,
+                                std::strerror(errno)));
+      }
+      // Binary data (a pipe from /dev/urandom) is not copied to the end:
+      // the first bytes are enough for the reader to refuse it.
+      if (first && std::memchr(buffer.data(), '\0', size) != nullptr) break;
+      first = false;
+    }
+  }
+
+  std::string path_;
+  std::string readable_;
+  std::FILE* spool_ = nullptr;
+};
+
+// `path` is read; `name`, the input as the user gave it, is in messages.
+Calibration CalibrateSession(const std::string& path, const std::string& name,
+                             RepeatFlags& f) {
+  TerminalProgress progress("reading " + name);
   f.log.progress = progress.Callback();
   const Recording recording = ReadLog(path, f.log);
   progress.Done();
@@ -65,20 +139,20 @@ Calibration CalibrateSession(const std::string& path, RepeatFlags& f) {
       return CalibrateRecording(recording, f.calibrate);
     } catch (const Error& e) {
       if (std::string_view(e.what()).starts_with(path)) throw;
-      throw Error(fmt::format("{}: {}", path, e.what()));
+      throw Error(fmt::format("{}: {}", name, e.what()));
     }
   }();
-  for (const std::string& w : result.warnings) PrintWarnings({path + ": " + w});
+  for (const std::string& w : result.warnings) PrintWarnings({name + ": " + w});
   if (!result.solve.converged()) {
     throw Error(
         fmt::format("{}: the fit did not converge ({}); check the positions with "
                     "'mpcal detect {}'",
-                    path,
+                    name,
                     result.solve.message,
-                    path));
+                    name));
   }
   fmt::print("  {}: calibrated, {} positions, residual RMS {:.2g} m/s2\n",
-             path,
+             name,
              result.positions.size(),
              result.solve.residual_rms_after_mps2);
   return result.calibration;
@@ -111,11 +185,16 @@ void Run(RepeatFlags& f) {
   std::vector<Calibration> trials;
   fmt::print("{} sessions:\n", f.inputs.size());
   for (const std::string& path : f.inputs) {
-    if (IsCalibrationFile(path)) {
-      trials.push_back(ReadCalibrationFile(path));
-      fmt::print("  {}: calibration file{}\n", path, trials.back().std ? "" : " (no 1σ)");
-    } else {
-      trials.push_back(CalibrateSession(path, f));
+    const SpooledInput input(path);
+    try {
+      if (IsCalibrationFile(input.readable())) {
+        trials.push_back(ReadCalibrationFile(input.readable()));
+        fmt::print("  {}: calibration file{}\n", path, trials.back().std ? "" : " (no 1σ)");
+      } else {
+        trials.push_back(CalibrateSession(input.readable(), path, f));
+      }
+    } catch (const Error& e) {
+      throw Error(input.Restore(e.what()));
     }
   }
   fmt::print("\n");
@@ -148,8 +227,10 @@ void AddRepeatCommand(CLI::App& root) {
                   "options below) or calibration files (JSON from 'mpcal calibrate')")
       ->required();
   app->add_option(
-      "--json", flags->json, "Write the table as JSON (mpcal.repeatability/1, SI units)");
-  app->add_option("--csv", flags->csv, "Write the table as CSV (SI units)");
+      "--json", flags->json, "Write the table as JSON (mpcal.repeatability/1, SI units)")
+      ->check(OutputPath);
+  app->add_option("--csv", flags->csv, "Write the table as CSV (SI units)")
+      ->check(OutputPath);
   app->add_option(
          "--significance",
          flags->repeat.significance,

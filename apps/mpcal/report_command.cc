@@ -10,6 +10,7 @@
 #include "cli_options.h"
 #include "command.h"
 #include "mpcal/atomic_file.h"
+#include "mpcal/calibrate.h"
 #include "mpcal/error.h"
 #include "mpcal/report.h"
 
@@ -63,6 +64,8 @@ void Run(const ReportFlags& f) {
   CheckOutput(f.output, {f.files.calibration, f.files.session, f.files.repeatability,
                          f.files.verification, f.files.noise});
   ReportInputs inputs = LoadReportInputs(f.files);
+  // A counts log read as m/s² would plot ±20,000 "m/s²": calibrate's check.
+  if (inputs.session) CheckUnits(inputs.session->recording, kStandardGravityMps2);
   inputs.command_line = CommandLine(f);
   WriteReport(f.output, inputs);
   if (f.output == "-") return;
@@ -105,6 +108,7 @@ void AddReportCommand(CLI::App& root) {
                   "with its band and fitted terms, the terms table");
   cmd->add_option(
          "-o,--output", f->output, "The HTML file to write ('-': standard output)")
+      ->check(OutputPath)
       ->required();
   cmd->footer(
       "Each section appears when its input is given; at least one is needed.\n"

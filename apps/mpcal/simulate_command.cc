@@ -249,11 +249,13 @@ void AddSimulateStaticCommand(CLI::App& simulate) {
                   f->output,
                   "The log (CSV: t,ax,ay,az[,gx,gy,gz]); '-' for standard output. With "
                   "--trials, FILE_1.csv ... FILE_N.csv")
+      ->check(OutputPath)
       ->required();
   app->add_option("--truth",
                   f->truth,
                   "Write the true errors as a calibration file (JSON); with --trials, "
-                  "TRUTH_1.json ... TRUTH_N.json");
+                  "TRUTH_1.json ... TRUTH_N.json")
+      ->check(OutputPath);
   app->add_option(
          "--positions",
          f->positions,

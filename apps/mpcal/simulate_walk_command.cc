@@ -141,10 +141,13 @@ void AddSimulateWalkCommand(CLI::App& simulate) {
       ->capture_default_str();
   app->add_option(
          "-o,--output", f->output, "The IMU log (CSV: t,ax,ay,az[,gx,gy,gz]), m/s2")
+      ->check(OutputPath)
       ->required();
   app->add_option("--gnss", f->gnss, "The GNSS reference (RTKLIB .pos, GPST)")
+      ->check(OutputPath)
       ->required();
-  app->add_option("--truth", f->truth, "The true errors as a calibration file (JSON)");
+  app->add_option("--truth", f->truth, "The true errors as a calibration file (JSON)")
+      ->check(OutputPath);
   app->add_option(
       "--path", f->path, "The true path (CSV t_s,e_m,n_m,u_m at the IMU samples)");
   auto& o = f->options;

@@ -11,9 +11,11 @@
 
 #include <fmt/format.h>
 
+#include "calibration_table.h"
 #include "cli_options.h"
 #include "command.h"
 #include "mpcal/atomic_file.h"
+#include "mpcal/calibrate.h"
 #include "mpcal/calibration_file.h"
 #include "mpcal/error.h"
 #include "mpcal/gnss.h"
@@ -108,6 +110,9 @@ void RunVerify(CLI::App& cmd, VerifyFlags& f) {
     options.integrate.gravity_mps2 = f.gravity.Resolve();
   }
 
+  // A walk in g read as m/s² integrates to a tenth of the distance: the
+  // same units check as calibrate's (|a| stays near g while walking too).
+  CheckUnits(imu, options.integrate.gravity_mps2);
   const VerifyResult result = Verify(imu, reference, calibration, options);
   // The paths first, so that the result can name them for `mpcal report`.
   std::vector<std::pair<std::string, std::string>> trajectories;
@@ -123,11 +128,9 @@ void RunVerify(CLI::App& cmd, VerifyFlags& f) {
   }
   WriteFileAtomically(f.output, VerificationToJson(result, trajectories));
 
-  for (const std::string& w : imu.warnings) fmt::print(stderr, "mpcal: warning: {}\n", w);
-  for (const std::string& w : reference.warnings)
-    fmt::print(stderr, "mpcal: warning: {}\n", w);
-  for (const std::string& w : result.warnings)
-    fmt::print(stderr, "mpcal: warning: {}\n", w);
+  PrintWarnings(imu.warnings);
+  PrintWarnings(reference.warnings);
+  PrintWarnings(result.warnings);
   // The result may be on standard output: then the summary goes to stderr.
   std::FILE* out = f.output == "-" ? stderr : stdout;
   fmt::print(out,
@@ -193,12 +196,14 @@ void AddVerifyCommand(CLI::App& root) {
                   f->calibration,
                   "Calibration file (JSON): also integrate the corrected readings");
   cmd->add_option("-o,--output", f->output, "Result file (JSON); '-' for standard output")
+      ->check(OutputPath)
       ->required();
   cmd->add_option(
       "--trajectory-csv",
       f->trajectory_prefix,
       "Also write PREFIX-reference.csv, PREFIX-raw.csv and PREFIX-corrected.csv "
-      "(t_s,e_m,n_m,u_m on the reference's clock and frame) for plotting");
+      "(t_s,e_m,n_m,u_m on the reference's clock and frame) for plotting")
+      ->check(OutputPath);
   const std::vector<std::pair<std::string, MountMode>> mounts{{"level", MountMode::kLevel},
                                                 {"z-up", MountMode::kZUp}};
   cmd->add_option(

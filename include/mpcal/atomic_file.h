@@ -5,6 +5,13 @@
 /// temporary file in the destination's directory and renamed over the
 /// destination only on success, so an error or a crash never leaves a
 /// half-written file behind. "-" means standard output.
+///
+/// Only regular files are replaced so. A symbolic link is followed and the
+/// file it names is replaced (the link stays); a character device or a FIFO
+/// (/dev/null, a named pipe) is written in place, and /dev/stdout,
+/// /dev/stderr, /dev/fd/N go to the open descriptor, so that no device node
+/// is ever replaced by a regular file. Block devices and sockets cannot be
+/// written whole or not at all and are refused.
 #pragma once
 
 #include <functional>
@@ -15,8 +22,9 @@
 namespace mpcal {
 
 /// Writes `content` to `path` atomically.
-/// \throws mpcal::Error when the directory is missing or not writable, or the
-///   path is a directory.
+/// \throws mpcal::Error when the directory is missing or not writable, the
+///   path is empty, a directory, a block device or a socket, or a write fails
+///   (a full disk, /dev/full, a closed standard output).
 void WriteFileAtomically(const std::string& path, const std::string& content);
 
 /// Streams into `path` atomically: `write` gets an ostream; the file appears
@@ -27,8 +35,8 @@ void WriteStreamAtomically(const std::string& path,
                            const std::function<void(std::ostream&)>& write);
 
 /// Checks, before any work, that `path` can be written: not a directory, in
-/// a directory that exists and is writable ("-", standard output, always
-/// can), so that a long run does not end in an error that loses its result.
+/// a directory that exists and is writable (a device or FIFO: writable; "-"
+/// and /dev/stdout: standard output open), so that a long run does not end in an error that loses its result.
 /// \throws mpcal::Error naming the path and what to do.
 void CheckWritable(const std::string& path);
 

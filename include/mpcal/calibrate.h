@@ -17,6 +17,12 @@ namespace mpcal {
 struct CalibrateOptions {
   DetectOptions detect;
   SolveOptions solve;
+  /// Raw counts only: the datasheet's sensitivity (counts per g, e.g. 16384
+  /// for an MPU-6050 at ±2 g). 0: the nominal scale is the radius of the
+  /// sphere the positions lie on. With it, the scale-factor errors (ppm) and
+  /// biases are relative to the datasheet; the file records which
+  /// (Calibration::scale_reference).
+  double counts_per_g = 0.0;
   std::string Validate() const;
 };
 

@@ -68,6 +68,21 @@ struct Calibration {
   /// that turns them into m/s² before the model is applied.
   AccelUnits input_units = AccelUnits::kMps2;
   double mps2_per_unit = 1.0;
+  /// Raw counts only: where mps2_per_unit comes from, "fitted_sphere" (the
+  /// radius of the sphere the positions lie on: scale-factor errors are
+  /// relative to it) or "datasheet" (a given counts per g: they are relative
+  /// to the datasheet's sensitivity). Empty for fixed units.
+  std::string scale_reference;
+  /// How the log it was made from was read, so that logs of the same logger
+  /// are read alike: the column mapping ("t=millis,ax=ax,ay=ay,az=az"), the
+  /// time unit ("s", "ms", "us", "ns", "index") and, for a sample index, the
+  /// rate (Hz). Absent in files written before it was recorded.
+  struct InputLayout {
+    std::string columns;
+    std::string time_unit;
+    double rate_hz = 0.0;
+  };
+  std::optional<InputLayout> input_layout;
   ErrorModel model;
   /// 1σ of each parameter (same layout); nullopt when not estimated (truth).
   std::optional<ErrorModel> std;

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cctype>
 #include <cmath>
 #include <ostream>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -73,6 +75,56 @@ std::optional<Rest> RestMagnitude(std::vector<RestBlock> blocks) {
   std::nth_element(magnitudes.begin(), magnitudes.begin() + quiet / 2, magnitudes.end());
   std::nth_element(raw.begin(), raw.begin() + quiet / 2, raw.end());
   return Rest{magnitudes[quiet / 2], raw[quiet / 2]};
+}
+
+// The unit in brackets of an accelerometer column's name, as written for
+// `units`: "m/s^2" (phyphox's spelling), "g"; empty for counts.
+bool IsUnitLabelOf(std::string_view label, AccelUnits units) {
+  std::string l;
+  for (char c : label) {
+    if (c != ' ') l.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
+  }
+  if (units == AccelUnits::kG) return l == "g";
+  if (units == AccelUnits::kMps2) {
+    return l == "m/s^2" || l == "m/s2" || l == "m/s\xc2\xb2" || l == "ms^-2" || l == "ms-2" ||
+           l == "mps2";
+  }
+  return false;
+}
+
+// The header with the unit in brackets after each accelerometer column's
+// name rewritten for the corrected readings: with g out of a log in m/s²,
+// "Acceleration x (m/s^2)" becomes "Acceleration x (g)". Other columns, and
+// names without a unit, stay as they are.
+std::string RelabelHeader(std::string_view header, const LogLayout& layout, AccelUnits from,
+                          AccelUnits to) {
+  if (from == to || layout.delimiter == ' ') return std::string(header);
+  const std::string_view label = to == AccelUnits::kG ? "g" : "m/s^2";
+  std::string out;
+  int column = 0;
+  std::size_t start = 0;
+  while (start <= header.size()) {
+    std::size_t stop = header.find(layout.delimiter, start);
+    if (stop == std::string_view::npos) stop = header.size();
+    std::string field(header.substr(start, stop - start));
+    const bool accel = std::find(layout.accel_columns.begin(), layout.accel_columns.end(),
+                                 column) != layout.accel_columns.end();
+    const std::size_t open = field.find_first_of("([");
+    if (accel && open != std::string::npos) {
+      const char close = field[open] == '(' ? ')' : ']';
+      const std::size_t end = field.find(close, open + 1);
+      if (end != std::string::npos &&
+          IsUnitLabelOf(std::string_view(field).substr(open + 1, end - open - 1), from)) {
+        field.replace(open + 1, end - open - 1, label);
+      }
+    }
+    out += field;
+    if (stop == header.size()) break;
+    out += layout.delimiter;
+    start = stop + 1;
+    ++column;
+  }
+  return out;
 }
 
 }  // namespace
@@ -159,7 +211,11 @@ ApplyResult ApplyCalibration(const Calibration& calibration, const std::string& 
     while (scanner.Next(&line)) {
       if (!line.is_data) {
         ++result.other_lines;
-        buffer.append(line.text);
+        if (line.line_number == scanner.layout().header_line) {
+          buffer.append(RelabelHeader(line.text, scanner.layout(), log_units, result.out_units));
+        } else {
+          buffer.append(line.text);
+        }
         buffer.append(line.eol);
       } else {
         ++result.data_rows;

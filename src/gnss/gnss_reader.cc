@@ -1,4 +1,6 @@
 // Readers of GNSS reference tracks: RTKLIB .pos, NMEA GGA, CSV.
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -18,6 +20,7 @@
 #include <GeographicLib/LocalCartesian.hpp>
 
 #include "mpcal/error.h"
+#include "mpcal/text_input.h"
 #include "mpcal/gnss.h"
 
 namespace mpcal {
@@ -817,15 +820,14 @@ GnssTrack ReadGnss(const std::string& path, const GnssReadOptions& options) {
   if (std::filesystem::is_directory(path, ec)) {
     throw Error(fmt::format("{}: is a directory, not a GNSS reference file", path));
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  if (::access(path.c_str(), R_OK) != 0) {
     throw Error(fmt::format(
         "{}: cannot open the GNSS reference file (missing or unreadable)", path));
   }
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (in.bad()) throw Error(fmt::format("{}: read error", path));
-  return ParseGnss(content.str(), path, options);
+  // Checked before it is read to the end (not a device, not binary, not
+  // larger than a day of 10 Hz positions).
+  return ParseGnss(ReadTextInput(path, kMaxReferenceFileBytes, "GNSS reference file"), path,
+                   options);
 }
 
 Eigen::Vector3d GeodeticToEnu(const Geodetic& origin, const Geodetic& point) {

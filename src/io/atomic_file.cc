@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <streambuf>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -99,36 +100,138 @@ mode_t CurrentUmask() {
   return mask;
 }
 
-}  // namespace
+// Where the bytes of an output go. A rename(2) over a device node or a FIFO
+// would replace it with a regular file (as root: the system's /dev/null), and
+// a rename over a symbolic link would replace the link, not the file it
+// names; so only regular files (or new ones) are written through a
+// temporary file, the rest directly.
+struct OutputTarget {
+  enum class Kind {
+    kDescriptor,  // an open descriptor: "-", /dev/stdout, /dev/fd/N
+    kDirect,      // a character device or FIFO, opened and written in place
+    kReplace,     // a regular file or a new one: temporary file + rename
+  };
+  Kind kind = Kind::kReplace;
+  std::string path;  // symbolic links followed
+  int fd = -1;       // kDescriptor only
+};
 
-void WriteFileAtomically(const std::string& path, const std::string& content) {
-  WriteStreamAtomically(path, [&content](std::ostream& out) {
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-  });
+// The descriptor a path names, or -1: /dev/stdout, /dev/stderr, /dev/fd/N,
+// /proc/self/fd/N. Writing through the descriptor (rather than opening the
+// path anew) keeps the shell's offset and append mode of a redirection.
+int DescriptorOf(const std::string& path) {
+  if (path == "-" || path == "/dev/stdout") return STDOUT_FILENO;
+  if (path == "/dev/stderr") return STDERR_FILENO;
+  for (const std::string_view prefix : {"/dev/fd/", "/proc/self/fd/"}) {
+    if (path.size() > prefix.size() && path.compare(0, prefix.size(), prefix) == 0) {
+      const std::string digits = path.substr(prefix.size());
+      if (digits.size() <= 6 &&
+          digits.find_first_not_of("0123456789") == std::string::npos) {
+        return std::stoi(digits);
+      }
+    }
+  }
+  return -1;
 }
 
-void WriteStreamAtomically(const std::string& path,
-                           const std::function<void(std::ostream&)>& write) {
-  if (path == "-") {
-    std::fflush(stdout);
-    FdStreambuf buf(STDOUT_FILENO);
-    std::ostream out(&buf);
-    write(out);
-    out.flush();
-    if (!out || buf.error() != 0) {
-      throw Error(fmt::format("error writing to standard output: {}",
-                              std::strerror(buf.error() != 0 ? buf.error() : EIO)));
+std::string DescribeDescriptor(int fd) {
+  if (fd == STDOUT_FILENO) return "standard output";
+  if (fd == STDERR_FILENO) return "standard error";
+  return fmt::format("file descriptor {}", fd);
+}
+
+OutputTarget ResolveOutput(const std::string& path) {
+  if (path.empty()) throw Error("the output file name is empty");
+  std::string current = path;
+  for (int hop = 0; hop < 40; ++hop) {
+    if (const int fd = DescriptorOf(current); fd >= 0) {
+      return {OutputTarget::Kind::kDescriptor, current, fd};
     }
-    return;
+    struct stat st {};
+    if (::lstat(current.c_str(), &st) != 0) {
+      // Not there (yet): a new file, written atomically; a missing
+      // directory is CheckWritable's to explain.
+      return {OutputTarget::Kind::kReplace, current, -1};
+    }
+    if (S_ISLNK(st.st_mode)) {
+      std::string link(4096, '\0');
+      const ssize_t n = ::readlink(current.c_str(), link.data(), link.size());
+      if (n < 0) {
+        throw Error(fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
+      }
+      link.resize(static_cast<std::size_t>(n));
+      const fs::path next(link);
+      current = next.is_absolute() ? link : (OutputDirectory(current) / next).string();
+      continue;
+    }
+    if (S_ISDIR(st.st_mode)) {
+      throw Error(fmt::format("cannot write '{}': it is a directory; give a file name", path));
+    }
+    if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) {
+      return {OutputTarget::Kind::kDirect, current, -1};
+    }
+    if (S_ISREG(st.st_mode)) {
+      // Files under /proc cannot be renamed over; they are written in place.
+      const bool in_proc = current.rfind("/proc/", 0) == 0;
+      return {in_proc ? OutputTarget::Kind::kDirect : OutputTarget::Kind::kReplace, current,
+              -1};
+    }
+    throw Error(fmt::format(
+        "cannot write '{}': it is a {}, which cannot be written whole or not at all; give a "
+        "regular file",
+        path, S_ISBLK(st.st_mode) ? "block device" : "socket or other special file"));
   }
-  CheckWritable(path);
-  const fs::path target(path);
+  throw Error(fmt::format("cannot write '{}': too many levels of symbolic links", path));
+}
+
+// Streams `write` into descriptor `fd`; `name` for the messages.
+void WriteToDescriptor(int fd, const std::string& name,
+                       const std::function<void(std::ostream&)>& write) {
+  FdStreambuf buf(fd);
+  std::ostream out(&buf);
+  write(out);
+  out.flush();
+  if (!out || buf.error() != 0) {
+    throw Error(fmt::format("error writing to {}: {}", name,
+                            std::strerror(buf.error() != 0 ? buf.error() : EIO)));
+  }
+}
+
+void WriteInPlace(const std::string& path, const std::string& device,
+                  const std::function<void(std::ostream&)>& write) {
+  const int fd = ::open(device.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
+  if (fd < 0) {
+    throw Error(fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
+  }
+  try {
+    WriteToDescriptor(fd, fmt::format("'{}'", path), write);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  if (::close(fd) != 0) {
+    throw Error(fmt::format("error writing '{}': {}", path, std::strerror(errno)));
+  }
+}
+
+// The mode of the file being replaced, so that replacing keeps it; a new file
+// gets the usual permissions, as if created by open(2) (mkstemp makes 0600).
+mode_t ModeFor(const std::string& target) {
+  struct stat st {};
+  if (::stat(target.c_str(), &st) == 0 && S_ISREG(st.st_mode)) return st.st_mode & 07777;
+  return 0666 & ~CurrentUmask();
+}
+
+void ReplaceAtomically(const std::string& path, const std::string& resolved,
+                       const std::function<void(std::ostream&)>& write) {
+  const fs::path target(resolved);
   const fs::path dir = OutputDirectory(target);
   // The temporary file sits beside the target so that rename(2) is atomic
   // (same file system), and is hidden so that a crash leaves no clutter in
   // listings.
   std::string tmp =
       (dir / fmt::format(".{}.mpcal-XXXXXX", target.filename().string())).string();
+  const mode_t mode = ModeFor(resolved);
   const int fd = ::mkstemp(tmp.data());
   if (fd < 0) {
     throw Error(fmt::format("cannot write '{}': {} (is directory '{}' writable?)", path,
@@ -155,9 +258,7 @@ void WriteStreamAtomically(const std::string& path,
                        std::strerror(buf.error() != 0 ? buf.error() : EIO)));
     }
   }
-  // mkstemp makes the file private (0600); an output file gets the usual
-  // permissions, as if created by open(2).
-  if (::fchmod(fd, 0666 & ~CurrentUmask()) != 0) {
+  if (::fchmod(fd, mode) != 0) {
     fail(fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
   }
   if (::close(fd) != 0) {
@@ -165,22 +266,56 @@ void WriteStreamAtomically(const std::string& path,
     ::unlink(tmp.c_str());
     throw Error(fmt::format("error writing '{}': {}", path, std::strerror(err)));
   }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+  if (::rename(tmp.c_str(), resolved.c_str()) != 0) {
     const int err = errno;
     ::unlink(tmp.c_str());
     throw Error(fmt::format("cannot write '{}': {}", path, std::strerror(err)));
   }
 }
 
-void CheckWritable(const std::string& path) {
-  if (path == "-") return;
-  if (path.empty()) throw Error("no output file given");
-  const fs::path target(path);
-  std::error_code ec;
-  if (fs::is_directory(target, ec)) {
-    throw Error(fmt::format("cannot write '{}': it is a directory; give a file name", path));
+}  // namespace
+
+void WriteFileAtomically(const std::string& path, const std::string& content) {
+  WriteStreamAtomically(path, [&content](std::ostream& out) {
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+  });
+}
+
+void WriteStreamAtomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& write) {
+  CheckWritable(path);
+  const OutputTarget target = ResolveOutput(path);
+  switch (target.kind) {
+    case OutputTarget::Kind::kDescriptor:
+      std::fflush(stdout);
+      WriteToDescriptor(target.fd, DescribeDescriptor(target.fd), write);
+      return;
+    case OutputTarget::Kind::kDirect:
+      WriteInPlace(path, target.path, write);
+      return;
+    case OutputTarget::Kind::kReplace:
+      ReplaceAtomically(path, target.path, write);
+      return;
   }
-  const fs::path dir = OutputDirectory(target);
+}
+
+void CheckWritable(const std::string& path) {
+  const OutputTarget target = ResolveOutput(path);
+  if (target.kind == OutputTarget::Kind::kDescriptor) {
+    if (::fcntl(target.fd, F_GETFL) < 0) {
+      throw Error(fmt::format("cannot write '{}': {} is closed", path,
+                              DescribeDescriptor(target.fd)));
+    }
+    return;
+  }
+  if (target.kind == OutputTarget::Kind::kDirect) {
+    if (::access(target.path.c_str(), W_OK) != 0) {
+      throw Error(fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
+    }
+    return;
+  }
+  const fs::path dir = OutputDirectory(fs::path(target.path));
+  std::error_code ec;
   if (!fs::is_directory(dir, ec)) {
     throw Error(fmt::format(
         "cannot write '{}': directory '{}' does not exist; create it, or give another path",
@@ -195,6 +330,8 @@ void CheckWritable(const std::string& path) {
 
 void RefuseOverwritingInput(const std::string& input, const std::string& output) {
   if (input == "-" || output == "-") return;
+  // A device or a pipe named twice (/dev/null in and out) overwrites nothing.
+  if (output.empty() || ResolveOutput(output).kind != OutputTarget::Kind::kReplace) return;
   std::error_code ec;
   bool same = fs::weakly_canonical(input, ec) == fs::weakly_canonical(output, ec) && !ec;
   if (!same && fs::exists(input, ec) && fs::exists(output, ec)) {

@@ -16,7 +16,10 @@
 
 #include "mpcal/atomic_file.h"
 #include "mpcal/error.h"
+#include "mpcal/text_input.h"
 #include "mpcal/json_reader.h"
+#include "mpcal/log_reader.h"
+#include "mpcal/plausible.h"
 
 namespace mpcal {
 namespace {
@@ -27,10 +30,7 @@ using json = JsonReader::json;
 
 constexpr std::string_view kFormatFamily = "mpcal.accelerometer";
 constexpr int kMajorVersion = 1;
-// Earth's gravity is 9.76-9.84 m/s² anywhere on its surface; outside this
-// band the value is in the wrong units or corrupt.
-constexpr double kMinGravityMps2 = 9.0;
-constexpr double kMaxGravityMps2 = 10.5;
+// Earth's gravity, and what a sensor's parameters can be: plausible.h.
 
 // ----- writing -----
 
@@ -75,6 +75,15 @@ ErrorModel ReadModel(const JsonReader& r,
   m.theta_yz_rad = r.Number(angles, apath, "yz");
   m.theta_zx_rad = r.Number(angles, apath, "zx");
   m.theta_zy_rad = r.Number(angles, apath, "zy");
+  // A bias of 1e308 would be applied as it is: beyond a few g it is a
+  // corrupt file, not a sensor (plausible.h). Its 1σ too.
+  for (int i = 0; i < 3; ++i) {
+    if (!(std::abs(m.bias_mps2[i]) <= kMaxBiasMps2)) {
+      r.Fail(fmt::format("'{}bias_mps2[{}]' = {} is beyond any accelerometer's bias (±{:g} "
+                         "m/s², 10 g)",
+                         path.empty() ? "" : path + ".", i, m.bias_mps2[i], kMaxBiasMps2));
+    }
+  }
   if (is_std) {
     const auto v = ToVector(m);
     for (int i = 0; i < kNumModelParameters; ++i) {
@@ -87,7 +96,7 @@ ErrorModel ReadModel(const JsonReader& r,
     }
   } else {
     for (int i = 0; i < 3; ++i) {
-      if (!(m.scale_factor_error[i] > -0.5 && m.scale_factor_error[i] < 0.5)) {
+      if (!(std::abs(m.scale_factor_error[i]) < kMaxScaleFactorError)) {
         r.Fail(fmt::format(
             "'{}scale_factor_error[{}]' = {} is outside (-0.5, 0.5): the axis "
             "would read {:.3g} times the true value",
@@ -100,7 +109,7 @@ ErrorModel ReadModel(const JsonReader& r,
     for (auto [name, v] : {std::pair{"yz", m.theta_yz_rad},
                            std::pair{"zx", m.theta_zx_rad},
                            std::pair{"zy", m.theta_zy_rad}}) {
-      if (std::abs(v) >= std::numbers::pi / 4) {
+      if (!(std::abs(v) < kMaxNonOrthogonalityRad)) {
         r.Fail(
             fmt::format("'non_orthogonality_rad.{}' = {} rad is not a small angle "
                         "(|angle| must be below pi/4)",
@@ -121,6 +130,14 @@ std::string CalibrationToJson(const Calibration& c) {
   j["gravity_mps2"] = Num(c.gravity_mps2, "gravity_mps2");
   j["input"] = {{"units", std::string(ToString(c.input_units))},
                 {"mps2_per_unit", Num(c.mps2_per_unit, "input.mps2_per_unit")}};
+  if (!c.scale_reference.empty()) j["input"]["scale_reference"] = c.scale_reference;
+  if (c.input_layout) {
+    j["input"]["columns"] = c.input_layout->columns;
+    j["input"]["time_unit"] = c.input_layout->time_unit;
+    if (c.input_layout->rate_hz > 0.0) {
+      j["input"]["rate_hz"] = Num(c.input_layout->rate_hz, "input.rate_hz");
+    }
+  }
   PutModel(j, c.model, "");
   if (c.std) {
     json s;
@@ -190,7 +207,7 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
   }
   c.model_kind = *kind;
   c.gravity_mps2 = r.Number(j, "", "gravity_mps2");
-  if (c.gravity_mps2 < kMinGravityMps2 || c.gravity_mps2 > kMaxGravityMps2) {
+  if (!IsPlausibleGravity(c.gravity_mps2)) {
     r.Fail(fmt::format("'gravity_mps2' = {} is not a magnitude of gravity on Earth (m/s²)",
                        c.gravity_mps2));
   }
@@ -202,13 +219,40 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
   }
   c.input_units = *parsed_units;
   c.mps2_per_unit = r.Number(input, "input", "mps2_per_unit");
-  if (c.mps2_per_unit <= 0.0) {
-    r.Fail(fmt::format("'input.mps2_per_unit' must be positive, found {}", c.mps2_per_unit));
+  if (!(c.mps2_per_unit >= kStandardGravityMps2 / kMaxCountsPerG &&
+        c.mps2_per_unit <= kStandardGravityMps2 / kMinCountsPerG)) {
+    r.Fail(fmt::format("'input.mps2_per_unit' = {} is not a sensor's scale (between {:g} and "
+                       "{:g} counts per g)",
+                       c.mps2_per_unit, kMinCountsPerG, kMaxCountsPerG));
   }
   if (const auto fixed = FixedMps2PerUnit(c.input_units);
       fixed && std::abs(c.mps2_per_unit - *fixed) > 1e-9 * *fixed) {
     r.Fail(fmt::format("'input.mps2_per_unit' is {} but units '{}' mean {} m/s² per unit",
                        c.mps2_per_unit, units, *fixed));
+  }
+  if (input.contains("scale_reference")) {
+    c.scale_reference = r.String(input, "input", "scale_reference");
+    if (c.scale_reference != "fitted_sphere" && c.scale_reference != "datasheet") {
+      r.Fail(fmt::format("'input.scale_reference' is '{}'; expected fitted_sphere or datasheet",
+                         c.scale_reference));
+    }
+  }
+  if (input.contains("columns")) {
+    Calibration::InputLayout layout;
+    layout.columns = r.String(input, "input", "columns");
+    if (input.contains("time_unit")) {
+      layout.time_unit = r.String(input, "input", "time_unit");
+      if (!ParseTimeUnit(layout.time_unit)) {
+        r.Fail(fmt::format("unknown 'input.time_unit' '{}'", layout.time_unit));
+      }
+    }
+    if (const auto rate = r.OptionalNumber(input, "input", "rate_hz")) {
+      if (!(*rate > 0.0 && *rate <= 1e6)) {
+        r.Fail(fmt::format("'input.rate_hz' = {} is not a sample rate (0-1 MHz)", *rate));
+      }
+      layout.rate_hz = *rate;
+    }
+    c.input_layout = layout;
   }
   c.model = ReadModel(r, j, "", false);
   if (c.model_kind == ModelKind::kBiasScale6 &&
@@ -251,6 +295,11 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
       PositionSummary p;
       p.start_s = r.Number(q, at, "start_s");
       p.end_s = r.Number(q, at, "end_s");
+      for (const double t : {p.start_s, p.end_s}) {
+        if (!(std::abs(t) <= kMaxTimeS)) {
+          r.Fail(fmt::format("'{}' has a time of {:.6g} s, beyond any logger's clock", at, t));
+        }
+      }
       p.samples = static_cast<std::size_t>(
           r.Integer(q, at, "samples", 0, std::numeric_limits<long long>::max()));
       p.mean_mps2 = r.Vector(q, at, "mean_mps2");
@@ -294,23 +343,9 @@ Calibration ReadCalibrationFile(const std::string& path) {
                             "by 'mpcal calibrate'",
                             path));
   }
-  std::stringstream content;
-  if (path == "-") {
-    content << std::cin.rdbuf();
-  } else {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-      throw Error(fmt::format("cannot read calibration file '{}': {}", path,
-                              std::strerror(errno)));
-    }
-    content << in.rdbuf();
-    if (in.bad()) throw Error(fmt::format("error reading calibration file '{}'", path));
-  }
-  // A calibration file is a few kilobytes; a huge one is not ours.
-  const std::string text = content.str();
-  if (text.size() > (std::size_t{64} << 20)) {
-    throw Error(fmt::format("'{}' is too large to be a calibration file", path));
-  }
+  // Checked before it is read to the end: /dev/zero or a video named by
+  // mistake is refused at once.
+  const std::string text = ReadTextInput(path, kMaxCalibrationFileBytes, "calibration file");
   return CalibrationFromJson(text, path == "-" ? "<stdin>" : path);
 }
 

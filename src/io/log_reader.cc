@@ -23,6 +23,7 @@
 #include <fmt/ranges.h>
 
 #include "mpcal/error.h"
+#include "mpcal/plausible.h"
 
 namespace mpcal {
 namespace {
@@ -92,6 +93,15 @@ Role RoleOfName(std::string_view name) {
   static const std::map<std::string, Role> kNames = [] {
     std::map<std::string, Role> m;
     for (const char* t : {"t", "time", "timestamp", "ts"}) m[t] = kTime;
+    // Loggers name the time column after its unit: Arduino's millis() and
+    // micros(), `timestamp_ms`, `time_us`, `Time (s)` (the bracket is
+    // dropped by NormaliseName; TimeUnitOfName reads it).
+    for (const char* t : {"millis", "micros", "nanos", "times", "timesec", "timems",
+                          "timeus", "timens", "tms", "tus", "tns", "timestampms",
+                          "timestampus", "timestampns", "timestamps", "elapsed",
+                          "elapsedms", "elapsedus", "seconds"}) {
+      m[t] = kTime;
+    }
     const char* axes = "xyz";
     for (int i = 0; i < 3; ++i) {
       for (std::string prefix : {"a", "acc", "accel", "acceleration", "accelerometer"}) {
@@ -105,6 +115,38 @@ Role RoleOfName(std::string_view name) {
   }();
   const auto it = kNames.find(NormaliseName(name));
   return it == kNames.end() ? kNone : it->second;
+}
+
+// The unit a time column's name states: `millis`, `timestamp_ms`,
+// `Time (s)`, `t [us]`; nullopt when it says none.
+std::optional<TimeUnit> TimeUnitOfName(std::string_view name) {
+  const std::string raw = Lower(StripQuotes(name));
+  const auto bracket = raw.find_first_of("[(");
+  if (bracket != std::string::npos && bracket > 0) {
+    std::string inside;
+    for (char c : raw.substr(bracket + 1)) {
+      if (c == ')' || c == ']') break;
+      if (c != ' ') inside.push_back(c);
+    }
+    if (inside == "s" || inside == "sec") return TimeUnit::kSeconds;
+    if (inside == "ms") return TimeUnit::kMilliseconds;
+    if (inside == "us" || inside == "\xc2\xb5s" || inside == "\xce\xbcs") {
+      return TimeUnit::kMicroseconds;
+    }
+    if (inside == "ns") return TimeUnit::kNanoseconds;
+  }
+  const std::string n = NormaliseName(name);
+  if (n == "millis" || n == "timems" || n == "tms" || n == "timestampms" || n == "elapsedms") {
+    return TimeUnit::kMilliseconds;
+  }
+  if (n == "micros" || n == "timeus" || n == "tus" || n == "timestampus" || n == "elapsedus") {
+    return TimeUnit::kMicroseconds;
+  }
+  if (n == "nanos" || n == "timens" || n == "tns" || n == "timestampns") {
+    return TimeUnit::kNanoseconds;
+  }
+  if (n == "times" || n == "timesec" || n == "seconds") return TimeUnit::kSeconds;
+  return std::nullopt;
 }
 
 bool IsSampleIndexName(std::string_view name) {
@@ -315,6 +357,12 @@ struct ScannerState {
   std::size_t data_rows = 0;
   LogLayout layout;
   LogOptions options;
+  // The largest reading an accelerometer gives, in options.units.
+  double max_reading = kMaxReadingCounts;
+  // Boot text skipped before the header or data: lines, and bytes from the
+  // start of the input (ReadLog starts there; LogScanner passes them on).
+  std::size_t skipped_lines = 0;
+  std::size_t skipped_bytes = 0;
   std::vector<Role> roles;  // role of each column up to min_columns
   int last_needed = 0;      // last column index that is parsed
   fast_float::parse_options number_format;
@@ -424,11 +472,34 @@ struct ScannerState {
     }
   }
 
-  // Throws when the first bytes are not text.
-  void CheckText() {
-    const std::size_t n = std::min<std::size_t>(end, 65536);
-    std::size_t controls = 0;
+  // Where the text starts: past serial noise (a NUL, control characters)
+  // in the first lines, as an Arduino sends while it boots; 0 when there is
+  // none, or when it does not end within the first 512 bytes on a line end
+  // (noise further in is a corrupt log, not a boot).
+  std::size_t NoiseEnd() const {
+    constexpr std::size_t kBootBytes = 512;
+    const std::size_t n = std::min<std::size_t>(end, kBootBytes);
+    std::size_t last_noise = n;
     for (std::size_t i = 0; i < n; ++i) {
+      const auto c = static_cast<unsigned char>(buf[i]);
+      if (c == 0 || (c < 0x20 && c != '\n' && c != '\r' && c != '\t' && c != '\f')) {
+        last_noise = i;
+      }
+    }
+    if (last_noise == n) return 0;
+    const auto* nl = static_cast<const char*>(
+        std::memchr(buf.data() + last_noise, '\n', std::min(end, kBootBytes) - last_noise));
+    if (nl == nullptr) return 0;
+    const std::size_t start = static_cast<std::size_t>(nl - buf.data()) + 1;
+    // Some text must follow, or this is a binary file.
+    return start + 64 <= end ? start : 0;
+  }
+
+  // Throws when the first bytes (from `from`) are not text.
+  void CheckText(std::size_t from = 0) {
+    const std::size_t n = std::min<std::size_t>(end, from + 65536);
+    std::size_t controls = 0;
+    for (std::size_t i = from; i < n; ++i) {
       const auto c = static_cast<unsigned char>(buf[i]);
       if (c == 0) {
         throw Error(fmt::format(
@@ -438,13 +509,13 @@ struct ScannerState {
       }
       if (c < 0x20 && c != '\n' && c != '\r' && c != '\t' && c != '\f') ++controls;
     }
-    if (controls * 100 > n) {
+    if (controls * 100 > n - from) {
       throw Error(fmt::format(
           "'{}' is not a text log (control characters in its first bytes); mpcal reads "
           "delimited text (CSV, TSV or whitespace separated numbers)",
           source));
     }
-    const std::string_view head(buf.data(), n);
+    const std::string_view head(buf.data() + from, n - from);
     if (head.find('\n') == std::string_view::npos &&
         std::count(head.begin(), head.end(), '\r') > 1) {
       throw Error(fmt::format(
@@ -460,11 +531,98 @@ struct ScannerState {
     return i == text.size() || text[i] == '#' || text[i] == '%';
   }
 
+  // A line of at least 3 numbers, whatever separates them.
+  static bool IsNumberRow(std::string_view text) {
+    std::size_t fields = 0;
+    std::size_t i = 0;
+    while (i < text.size()) {
+      while (i < text.size() && std::strchr(",; \t\r", text[i]) != nullptr) ++i;
+      const std::size_t start = i;
+      while (i < text.size() && std::strchr(",; \t\r", text[i]) == nullptr) ++i;
+      if (i == start) break;
+      if (!ParsesAsNumber(text.substr(start, i - start), '.')) return false;
+      ++fields;
+    }
+    return fields >= 3;
+  }
+
+  // Serial boot text before the header ("Initializing I2C devices...", a
+  // partial line): the lines before the first run of three number rows and
+  // the line just above it (the header, when it has the rows' separator)
+  // are skipped, with a warning that says where the data starts. Only when
+  // such a run exists: a log that never has one keeps its own errors.
+  template <typename Sniffed>
+  void SkipBootText(std::vector<Sniffed>* lines, std::size_t noise_end) {
+    std::size_t noise_lines = 0;
+    if (noise_end > 0) {
+      noise_lines = static_cast<std::size_t>(
+          std::count(buf.data() + begin, buf.data() + noise_end, '\n'));
+    }
+    std::size_t data = lines->size();
+    for (std::size_t i = 0; i + 2 < lines->size() || (i < lines->size() && eof); ++i) {
+      bool run = true;
+      for (std::size_t k = i; k < std::min(i + 3, lines->size()) && run; ++k) {
+        run = IsNumberRow((*lines)[k].text);
+      }
+      if (run) {
+        data = i;
+        break;
+      }
+    }
+    // Lines within the serial noise never count, whatever follows.
+    std::size_t first = 0;
+    while (first < lines->size() && (*lines)[first].line <= noise_lines) ++first;
+    if (data == lines->size() || data < first) {
+      if (first > 0) lines->erase(lines->begin(), lines->begin() + first);
+      skipped_lines = noise_lines;
+      skipped_bytes = noise_end;
+      if (noise_lines > 0) WarnSkipped(lines->empty() ? 0 : lines->front().line, false);
+      return;
+    }
+    std::size_t start = data;
+    if (data > first) {
+      const std::string_view row = (*lines)[data].text;
+      const std::string_view above = (*lines)[data - 1].text;
+      bool header = false;
+      for (char d : {'\t', ';', ','}) {
+        if (row.find(d) != std::string_view::npos) {
+          header = above.find(d) != std::string_view::npos;
+          break;
+        }
+      }
+      if (!header && row.find_first_of("\t;,") == std::string_view::npos) {
+        header = SplitFields(above, ' ').size() >= 3;
+      }
+      if (header) start = data - 1;
+    }
+    if (start == 0 && noise_lines == 0) return;
+    const std::size_t start_line = (*lines)[start].line;
+    // Bytes of the lines before start_line, from the unconsumed start.
+    std::size_t pos = begin;
+    for (std::size_t line = 1; line < start_line; ++line) {
+      const auto* nl = static_cast<const char*>(std::memchr(buf.data() + pos, '\n', end - pos));
+      pos = static_cast<std::size_t>(nl - buf.data()) + 1;
+    }
+    skipped_lines = start_line - 1;
+    skipped_bytes = pos;
+    lines->erase(lines->begin(), lines->begin() + start);
+    WarnSkipped(start_line, start < data);
+  }
+
+  void WarnSkipped(std::size_t start_line, bool header) {
+    warnings.push_back(fmt::format(
+        "'{}': skipped {} line{} before the {} (serial boot text or a title); the {} starts "
+        "on line {}",
+        source, skipped_lines, skipped_lines == 1 ? "" : "s", header ? "header" : "data",
+        header ? "header" : "data", start_line));
+  }
+
   void Detect(bool parse_gyro) {
     buf.resize(kChunkBytes);
     Refill(true);
     if (end == 0) throw Error(fmt::format("'{}' is empty: no data to read", source));
-    CheckText();
+    const std::size_t noise_end = NoiseEnd();
+    CheckText(noise_end);
     // A UTF-8 byte-order mark (spreadsheet exports) is not part of the data.
     if (end >= 3 && std::memcmp(buf.data(), "\xEF\xBB\xBF", 3) == 0) {
       begin = 3;
@@ -491,6 +649,7 @@ struct ScannerState {
         pos = stop + 1;
       }
     }
+    SkipBootText(&lines, noise_end);
     if (lines.empty()) {
       if (eof) {
         throw Error(fmt::format(
@@ -747,6 +906,13 @@ struct ScannerState {
   void ResolveTimeUnit(const std::vector<std::string_view>& time_fields) {
     TimeUnit unit = options.time_unit;
     if (layout.time_column < 0) unit = TimeUnit::kSampleIndex;
+    // A unit in the column's name (`millis`, `Time (s)`) is the logger's word.
+    if (unit == TimeUnit::kAuto && layout.header_line > 0 &&
+        layout.time_column < static_cast<int>(layout.column_names.size())) {
+      if (const auto named = TimeUnitOfName(layout.column_names[layout.time_column])) {
+        unit = *named;
+      }
+    }
     if (unit == TimeUnit::kAuto) {
       bool integers = !time_fields.empty();
       for (auto f : time_fields) integers = integers && LooksLikeInteger(f);
@@ -765,8 +931,18 @@ struct ScannerState {
         if (!diffs.empty()) {
           std::nth_element(diffs.begin(), diffs.begin() + diffs.size() / 2, diffs.end());
           const double spacing = diffs[diffs.size() / 2];
+          const bool steps_by_one =
+              std::all_of(diffs.begin(), diffs.end(), [](double d) { return d == 1.0; });
           if (spacing == 1.0 && options.rate_hz > 0.0) {
             unit = TimeUnit::kSampleIndex;
+          } else if (steps_by_one && diffs.size() >= 8) {
+            // 0, 1, 2, ... is a sample counter (an ADXL345 sketch's `n`), not
+            // milliseconds: read as ms it would blame the hold times.
+            throw Error(fmt::format(
+                "'{}': column '{}' steps by exactly 1 on every row: it is a sample index, "
+                "not a time; give the sample rate in Hz (or its time unit, if it holds "
+                "milliseconds at 1 kHz)",
+                source, layout.column_names[layout.time_column]));
           } else {
             // The unit that makes the sample period most like an IMU's (10 ms,
             // on a log scale), among periods from 50 µs to 2 s.
@@ -832,7 +1008,7 @@ struct ScannerState {
 
   // Why a data line did not parse; the message is only built then (Problem).
   // Kept by the caller, so that ReadLog's two threads can parse at once.
-  enum class Failure { kTooFew, kBadNumber, kNonFinite };
+  enum class Failure { kTooFew, kBadNumber, kNonFinite, kImpossible };
   struct LineFailure {
     Failure kind = Failure::kTooFew;
     int column = 0;
@@ -856,6 +1032,12 @@ struct ScannerState {
       case Failure::kNonFinite:
         return fmt::format("non-finite value '{}' in {}; remove or fix the line",
                            std::string_view(why.at, why.end - why.at), ColumnLabel(why.column));
+      case Failure::kImpossible:
+        return fmt::format(
+            "reading '{}' in {} is beyond any accelerometer's range (±{:g} {}, {:g} g): a "
+            "corrupt line, or readings in other units",
+            std::string_view(why.at, why.end - why.at), ColumnLabel(why.column),
+            MaxReading(options.units), ToString(options.units), kMaxReadingG);
     }
     return "";
   }
@@ -913,6 +1095,11 @@ struct ScannerState {
       if (!std::isfinite(value)) {
         return Fail(why, Failure::kNonFinite, column, number_begin, after);
       }
+      // One row of 1e308 would poison detection's threshold (or 1e20 its
+      // statistics): a reading no accelerometer can give is refused here.
+      if (role >= kAx && role <= kAz && std::abs(value) > max_reading) {
+        return Fail(why, Failure::kImpossible, column, number_begin, after);
+      }
       p = field_end;
       if (delimiter != ' ') {
         while (p < stop && IsBlank(*p)) ++p;
@@ -965,6 +1152,7 @@ LogScanner::LogScanner(const std::string& path, const LogOptions& options, bool 
   const std::string problem = options.Validate();
   if (!problem.empty()) throw Error("log options: " + problem);
   impl_->options = options;
+  impl_->max_reading = MaxReading(options.units);
   impl_->Open(path);
   impl_->Detect(parse_gyro);
 }
@@ -984,7 +1172,8 @@ bool LogScanner::Next(LogLine* line) {
   std::string_view text;
   std::string_view eol;
   while (s.GetLine(&text, &eol)) {
-    const bool other = s.line_number == s.layout.header_line || Impl::IsCommentOrBlank(text);
+    const bool other = s.line_number == s.layout.header_line ||
+                       s.line_number <= s.skipped_lines || Impl::IsCommentOrBlank(text);
     if (!pending.empty()) {
       if (other && Trim(text).empty()) continue;
       throw Error(fmt::format("{}:{}: {}", s.source, pending_line, pending));
@@ -1037,7 +1226,8 @@ bool ParsePlainRow(const ScannerState& s, std::string_view text, LogLine* out) {
     double value = 0.0;
     const auto result = fast_float::from_chars_advanced(p, stop, value, s.number_format);
     if (result.ec != std::errc() || (result.ptr != stop && *result.ptr != delimiter) ||
-        !std::isfinite(value)) {
+        !std::isfinite(value) ||
+        (role >= kAx && role <= kAz && std::abs(value) > s.max_reading)) {
       return false;
     }
     p = result.ptr;
@@ -1162,7 +1352,9 @@ class ChunkPipeline {
   // Bytes of the input merged so far.
   std::uint64_t consumed() const { return consumed_; }
   std::size_t HeaderLineOf(const Chunk& c) const {
-    return c.sequence == 0 ? s_.layout.header_line : 0;
+    return c.sequence == 0 && s_.layout.header_line > 0
+               ? s_.layout.header_line - s_.skipped_lines
+               : 0;
   }
 
  private:
@@ -1392,6 +1584,7 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
   if (!problem.empty()) throw Error("log options: " + problem);
   ScannerState s;
   s.options = options;
+  s.max_reading = MaxReading(options.units);
   s.Open(path);
   s.Detect(/*parse_gyro=*/true);
   const LogLayout& layout = s.layout;
@@ -1404,10 +1597,14 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
   const double gyro_scale = options.gyro_in_dps ? std::numbers::pi / 180.0 : 1.0;
   const double time_scale = layout.seconds_per_time_unit;
 
+  if (s.skipped_bytes > s.begin) {
+    s.consumed += s.skipped_bytes - s.begin;
+    s.begin = s.skipped_bytes;
+  }
   ChunkPipeline pipeline(s, time_scale, gyro_scale);
   pipeline.StartHelper();
 
-  std::size_t line_base = 0;  // lines before the chunk being merged
+  std::size_t line_base = s.skipped_lines;  // lines before the chunk being merged
   std::size_t rows_before = 0;
   std::size_t duplicates = 0;
   std::size_t first_duplicate_line = 0;
@@ -1521,6 +1718,15 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
   if (rec.empty()) {
     throw Error(fmt::format("'{}' has no data rows{}", rec.source,
                             layout.header_line > 0 ? " after its header" : ""));
+  }
+  // Rows are in time order: the first and last times bound them all.
+  for (const double t : {rec.time_s.front(), rec.time_s.back()}) {
+    if (std::abs(t) > kMaxTimeS) {
+      throw Error(fmt::format(
+          "{}: a time of {:.6g} s is beyond any logger's clock (more than {:g} s, 31,700 "
+          "years): the time column is not a time in the unit it is read in",
+          rec.source, t, kMaxTimeS));
+    }
   }
   if (duplicates > 0) {
     rec.warnings.push_back(fmt::format(

@@ -126,28 +126,41 @@ std::string LinePlot(const LinePlotSpec& original) {
     xt = TicksInside(xr, step);
     yt = TicksInside(yr, step);
   } else {
-    xt = NiceTicks(xr, 8);
+    // The x axis (time, mostly) ends where the data ends, not at the next
+    // round number: ticks inside the data's range.
+    xt = TicksInside(xr, NiceTicks(xr, 8).step);
     // Padding must not push a range that stops at zero across it (distances).
     Interval padded = Pad(yr, 0.03);
     if (yr.lo >= 0 && padded.lo < 0) padded.lo = 0;
     if (yr.hi <= 0 && padded.hi > 0) padded.hi = 0;
     yt = NiceTicks(padded, 5);
-    if (spec.log_x) xt = DecadeTicks(xr);
+    if (spec.log_x) {
+      xt = DecadeTicks(xr);
+      xr = xt.range;
+    }
     if (spec.log_y) yt = DecadeTicks(yr);
-    xr = xt.range;
     yr = yt.range;
   }
   const LinearScale x{xr.lo, xr.hi, area.left, area.right()};
   const LinearScale y{yr.lo, yr.hi, area.bottom(), area.top};
 
+  // Band labels: each centred on its band, on the first of two rows where it
+  // clears the label before it (narrow bands side by side alternate rows),
+  // so that no label is left out or drawn over another.
+  double row_end[2] = {-1e300, -1e300};
   for (const Band& b : spec.bands) {
     const double x0 = std::clamp(x(b.x0), area.left, area.right());
     const double x1 = std::clamp(x(b.x1), area.left, area.right());
     if (x1 <= x0) continue;
     svg.Rect(x0, area.top, x1 - x0, area.height, b.css_class);
-    // Labels of bands too narrow to hold them would overlap: left out.
-    if (!b.label.empty() && x1 - x0 >= 6.0 * static_cast<double>(b.label.size()) + 2) {
-      svg.Text((x0 + x1) / 2, area.top + 11, b.label, "band-label", "middle");
+    if (b.label.empty()) continue;
+    const double half = 3.2 * static_cast<double>(b.label.size()) + 1;
+    const double centre = (x0 + x1) / 2;
+    for (int row = 0; row < 2; ++row) {
+      if (centre - half < row_end[row]) continue;
+      svg.Text(centre, area.top + 11 + 11 * row, b.label, "band-label", "middle");
+      row_end[row] = centre + half;
+      break;
     }
   }
   for (const FillBetween& f : spec.fills) {

@@ -1,5 +1,7 @@
 // Reading the report's inputs: the verification JSON of `mpcal verify`,
 // trajectory CSVs, and the whole set of files behind a report.
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +15,7 @@
 #include "mpcal/calibration_file.h"
 #include "mpcal/error.h"
 #include "mpcal/json_reader.h"
+#include "mpcal/text_input.h"
 #include "mpcal/repeat.h"
 #include "mpcal/report.h"
 
@@ -41,12 +44,14 @@ std::string ReadText(const std::string& path, const char* what) {
   if (std::filesystem::is_directory(path, ec)) {
     throw Error(fmt::format("{}: is a directory, expected {}", path, what));
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(fmt::format("{}: cannot open {} (does it exist?)", path, what));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw Error(fmt::format("{}: read error", path));
-  return ss.str();
+  if (::access(path.c_str(), R_OK) != 0) {
+    throw Error(fmt::format("{}: cannot open {} (does it exist?)", path, what));
+  }
+  std::string_view kind(what);
+  if (kind.starts_with("a ")) kind.remove_prefix(2);
+  return ReadTextInput(path,
+                       kind.ends_with("CSV") ? kMaxReferenceFileBytes : kMaxResultFileBytes,
+                       kind);
 }
 
 std::vector<std::string> SplitCsv(const std::string& line) {

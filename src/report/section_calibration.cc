@@ -168,7 +168,9 @@ std::string CoverageFigure(const Calibration& c) {
                   kCoverageToleranceDeg));
   html += Paragraph(fmt::format("{} of the 26 canonical directions covered{}{}.",
                                 covered,
-                                missing.empty() ? "" : "; missing: ",
+                                missing.empty()
+                                    ? ""
+                                    : "; missing (named by what points down): ",
                                 fmt::join(missing, ", ")),
                     missing.empty() ? "ok" : "");
   return html;

@@ -62,10 +62,11 @@ std::string SessionSection(const ReportSession& session, const Calibration* cali
   meta.Row({"Still stretches dropped as too short",
             std::to_string(session.detection.dropped_short)});
   meta.Row({"Motion threshold (moving std of the readings)",
-            fmt::format("{} {} (quiet level {})",
+            fmt::format("{} {} (quiet level {} {})",
                         Significant(session.detection.threshold, 3),
                         UnitLabel(r.units),
-                        Significant(session.detection.quiet_level, 3))});
+                        Significant(session.detection.quiet_level, 3),
+                        UnitLabel(r.units))});
   html += meta.Finish();
   if (!r.warnings.empty()) html += WarningsList(r.warnings);
   if (r.empty()) return html + Paragraph("The recording is empty.") + "</section>\n";

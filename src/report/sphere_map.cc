@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "mpcal/coverage.h"
 #include "report/svg.h"
 
 namespace mpcal::report {
@@ -18,10 +19,6 @@ constexpr double kBottom = 30.0;
 // like the canonical directions on it.
 constexpr double kEquatorBand = 0.052;
 constexpr double kLegendGap = 8.0;
-
-std::string AxisName(int i, int sign) {
-  return fmt::format("{}{}", sign > 0 ? "+" : "\u2212", "xyz"[i]);
-}
 
 // Lambert azimuthal equal-area about the pole of the hemisphere: radius
 // sqrt(2(1 − |z|)) for a unit vector, √2 on the equator.
@@ -37,22 +34,13 @@ Eigen::Vector2d Project(const Eigen::Vector3d& u) {
 std::vector<CanonicalDirection> CanonicalCoverage(const std::vector<SpherePoint>& points,
                                                   double tolerance_deg) {
   std::vector<CanonicalDirection> out;
-  // Faces (one non-zero component), edges (two), corners (three).
-  for (int nonzero = 1; nonzero <= 3; ++nonzero) {
-    for (int i = -1; i <= 1; ++i) {
-      for (int j = -1; j <= 1; ++j) {
-        for (int k = -1; k <= 1; ++k) {
-          const int c[3] = {i, j, k};
-          if (std::abs(i) + std::abs(j) + std::abs(k) != nonzero) continue;
-          CanonicalDirection d;
-          d.direction = Eigen::Vector3d(i, j, k).normalized();
-          for (int a = 0; a < 3; ++a) {
-            if (c[a] != 0) d.name += AxisName(a, c[a]);
-          }
-          out.push_back(d);
-        }
-      }
-    }
+  // Named as the detector names them: by the face, edge or corner of the
+  // sensor that points down (one convention everywhere).
+  for (const mpcal::CanonicalDirection& c : mpcal::CanonicalDirections()) {
+    CanonicalDirection d;
+    d.direction = c.direction;
+    d.name = c.down;
+    out.push_back(d);
   }
   const double cos_tol = std::cos(tolerance_deg * std::numbers::pi / 180.0);
   for (CanonicalDirection& d : out) {

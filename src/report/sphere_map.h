@@ -21,7 +21,7 @@ struct SpherePoint {
 /// A direction of the 26 (faces, edges, corners of a cube).
 struct CanonicalDirection {
   Eigen::Vector3d direction;  ///< unit vector
-  std::string name;           ///< e.g. "+x−y"
+  std::string name;           ///< what points down, e.g. "-x+y edge"
   bool covered = false;
 };
 

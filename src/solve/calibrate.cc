@@ -9,6 +9,7 @@
 
 #include "mpcal/coverage.h"
 #include "mpcal/error.h"
+#include "mpcal/plausible.h"
 
 namespace mpcal {
 namespace {
@@ -56,6 +57,10 @@ void CheckUnits(const Recording& recording, double gravity_mps2) {
 }
 
 std::string CalibrateOptions::Validate() const {
+  if (counts_per_g != 0.0 && !(counts_per_g >= kMinCountsPerG && counts_per_g <= kMaxCountsPerG)) {
+    return fmt::format("counts_per_g = {} is not a sensitivity ({:g} to {:g} counts per g)",
+                       counts_per_g, kMinCountsPerG, kMaxCountsPerG);
+  }
   if (std::string p = detect.Validate(); !p.empty()) return "detect: " + p;
   if (std::string p = solve.Validate(); !p.empty()) return "solve: " + p;
   return "";
@@ -99,7 +104,9 @@ CalibrateResult CalibrateRecording(const Recording& recording,
           "axis up and down (run 'mpcal detect {} --units counts')",
           recording.source, intervals.size(), recording.source));
     }
-    result.mps2_per_unit = options.solve.gravity_mps2 / sphere.radius;
+    result.mps2_per_unit = options.counts_per_g > 0.0
+                               ? kStandardGravityMps2 / options.counts_per_g
+                               : options.solve.gravity_mps2 / sphere.radius;
     nominal_offset_mps2 = sphere.centre * result.mps2_per_unit;
   }
 
@@ -125,6 +132,9 @@ CalibrateResult CalibrateRecording(const Recording& recording,
   c.gravity_mps2 = options.solve.gravity_mps2;
   c.input_units = recording.units;
   c.mps2_per_unit = result.mps2_per_unit;
+  if (recording.units == AccelUnits::kCounts) {
+    c.scale_reference = options.counts_per_g > 0.0 ? "datasheet" : "fitted_sphere";
+  }
   c.model = result.solve.estimate;
   c.std = result.solve.std;
   FitSummary fit;

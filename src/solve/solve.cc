@@ -12,6 +12,7 @@
 #include <fmt/ranges.h>
 
 #include "mpcal/error.h"
+#include "mpcal/plausible.h"
 #include "observability.h"
 #include "residual.h"
 #include "weights.h"
@@ -372,9 +373,9 @@ std::string_view ToString(SolveStatus status) {
 }
 
 std::string SolveOptions::Validate() const {
-  if (!(gravity_mps2 > 9.7 && gravity_mps2 < 9.9)) {
-    return fmt::format("gravity_mps2 = {} is not a gravity on Earth (9.78..9.84 m/s2)",
-                       gravity_mps2);
+  if (!IsPlausibleGravity(gravity_mps2)) {
+    return fmt::format("gravity_mps2 = {} is not a gravity on Earth ({}..{} m/s2)",
+                       gravity_mps2, kMinGravityMps2, kMaxGravityMps2);
   }
   if (max_iterations < 1) return "max_iterations must be at least 1";
   if (!(outlier_threshold > 1.0)) return "outlier_threshold must be above 1";

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "mpcal/error.h"
+#include "mpcal/plausible.h"
 #include "mpcal/trajectory.h"
 
 namespace mpcal {
@@ -93,8 +94,9 @@ std::string StillOptions::Validate() const {
 }
 
 std::string IntegrateOptions::Validate() const {
-  if (!(gravity_mps2 > 9.0 && gravity_mps2 < 10.5)) {
-    return "gravity_mps2 must be a gravity magnitude in m/s2 (9..10.5)";
+  if (!IsPlausibleGravity(gravity_mps2)) {
+    return fmt::format("gravity_mps2 must be a gravity magnitude in m/s2 ({}..{})",
+                       kMinGravityMps2, kMaxGravityMps2);
   }
   if (!(min_initial_rest_s >= 0.0)) return "min_initial_rest_s must be >= 0";
   return "";

@@ -28,7 +28,7 @@ set(bad_calibs
   directory    ${BAD}                      "is a directory. give the JSON file"
   empty        ${BAD}/empty.csv            "the file is empty. expected JSON written by 'mpcal calibrate'"
   prose        ${BAD}/prose.txt            "not valid JSON: parse error at line 1, column 1"
-  binary       ${BAD}/binary.bin           "not valid JSON"
+  binary       ${BAD}/binary.bin           "is not a text file \\(binary data at byte 8\\)"
   malformed    ${BAD}/malformed.json       "not valid JSON: parse error at line 3"
   not_object   ${BAD}/not_an_object.json   "expected a JSON object .* found an array"
   version2     ${BAD}/version2.json        "format 'mpcal.accelerometer/2' is version 2 .* this mpcal reads version 1"
@@ -96,7 +96,7 @@ set(bad_gnss
   directory    ${BAD}                      "is a directory, not a GNSS reference file"
   empty        ${BAD}/empty.csv            "the reference file is empty"
   prose        ${BAD}/prose.txt            "first line must be a header"
-  binary       ${BAD}/binary.bin           "cannot tell the format of the reference")
+  binary       ${BAD}/binary.bin           "is not a text file \\(binary data at byte 8\\)")
 bad_input_cases(bad_verify_gnss "${bad_gnss}" out.json
   verify --imu ${GOOD_LOG} --gnss @IN@ -o out.json)
 
@@ -158,3 +158,130 @@ mpcal_cli_test(bad_detect_all_clipped EXIT 1
 # Regression: simulate walk left the files written before the one that failed.
 mpcal_cli_test(bad_output_walk_truth_unwritable EXIT 1 MATCH "is a directory"
   ABSENT w.csv g.pos ARGS simulate walk -o w.csv --gnss g.pos --truth .)
+
+# Outputs that are not regular files (issue 14): a device node, a FIFO or a
+# link is never replaced by a regular file; /dev/full and a closed or full
+# standard output are errors; an empty name is a usage error. Every command
+# that writes, each way (tests/cli/output_case.sh makes the node or link).
+set(MPCAL_OUTPUT_CASE ${CMAKE_CURRENT_SOURCE_DIR}/output_case.sh)
+set(_session ${MPCAL_TEST_DATA}/report/session.csv)
+set(_walk_dir ${CMAKE_CURRENT_BINARY_DIR}/simulate_walk_turn)
+set(output_cases
+  null          0 "exit 0"
+  full          1 "No space left on device"
+  fifo          0 "exit 0"
+  symlink       0 "exit 0"
+  fd_link       0 "exit 0"
+  stdout        0 "exit 0"
+  empty         2 "the file name is empty"
+  stdout_full   1 "error writing to standard output: No space left on device"
+  stdout_closed 1 "standard output is closed")
+function(output_cases command)
+  list(LENGTH output_cases n)
+  math(EXPR last "${n} - 1")
+  foreach(i RANGE 0 ${last} 3)
+    math(EXPR j "${i} + 1")
+    math(EXPR k "${i} + 2")
+    list(GET output_cases ${i} case)
+    list(GET output_cases ${j} code)
+    list(GET output_cases ${k} match)
+    set(name bad_output_${command}_${case})
+    add_test(NAME cli.${name}
+      COMMAND ${MPCAL_CLI_EXPECT} ${code} ${match} --workdir ${CMAKE_CURRENT_BINARY_DIR}/${name}
+              -- ${MPCAL_OUTPUT_CASE} ${case} $<TARGET_FILE:mpcal_cli> ${ARGN})
+    set_tests_properties(cli.${name} PROPERTIES LABELS cli TIMEOUT 120)
+    if(command STREQUAL "verify")
+      set_tests_properties(cli.${name} PROPERTIES FIXTURES_REQUIRED simulated_walk)
+    endif()
+  endforeach()
+endfunction()
+output_cases(calibrate calibrate ${_session} -o @OUT@)
+output_cases(detect detect ${_session} --json @OUT@)
+output_cases(apply apply ${GOOD_CALIB} ${GOOD_LOG} -o @OUT@)
+output_cases(repeat repeat ${MPCAL_TEST_DATA}/paper/colibri_trial1.json
+  ${MPCAL_TEST_DATA}/paper/colibri_trial2.json --json @OUT@)
+output_cases(verify verify --imu ${_walk_dir}/walk.csv --gnss ${_walk_dir}/ref.pos -o @OUT@)
+output_cases(report report --calib ${MPCAL_TEST_DATA}/report/calib.json -o @OUT@)
+output_cases(simulate simulate static --positions 2 --dwell 1 -o @OUT@)
+
+# Readers given a device (issue 14): refused at once, not read to the end.
+# `timeout` makes a hang fail fast (exit 124, not 1).
+function(device_input_case name match)
+  add_test(NAME cli.${name}
+    COMMAND ${MPCAL_CLI_EXPECT} 1 ${match} --workdir ${CMAKE_CURRENT_BINARY_DIR}/${name}
+            -- timeout 20 $<TARGET_FILE:mpcal_cli> ${ARGN})
+  set_tests_properties(cli.${name} PROPERTIES LABELS cli)
+endfunction()
+foreach(dev zero urandom)
+  set(calib_dev "'/dev/${dev}' is a character device, not a calibration file")
+  device_input_case(bad_device_apply_calib_${dev} ${calib_dev}
+    apply /dev/${dev} ${GOOD_LOG} -o out.csv)
+  device_input_case(bad_device_report_calib_${dev} ${calib_dev}
+    report --calib /dev/${dev} -o out.html)
+  device_input_case(bad_device_verify_calib_${dev} ${calib_dev}
+    verify --imu ${GOOD_LOG} --gnss ${GOOD_GNSS} --calib /dev/${dev} -o out.json)
+  device_input_case(bad_device_verify_gnss_${dev}
+    "'/dev/${dev}' is a character device, not a GNSS reference file"
+    verify --imu ${GOOD_LOG} --gnss /dev/${dev} -o out.json)
+  device_input_case(bad_device_repeat_${dev} "not a text log"
+    repeat ${GOOD_CALIB} /dev/${dev} --json out.json)
+  device_input_case(bad_device_calibrate_${dev} "not a text log" calibrate /dev/${dev})
+  device_input_case(bad_device_detect_${dev} "not a text log" detect /dev/${dev})
+  device_input_case(bad_device_apply_log_${dev} "not a text log"
+    apply ${GOOD_CALIB} /dev/${dev} -o out.csv)
+  device_input_case(bad_device_verify_imu_${dev} "not a text log"
+    verify --imu /dev/${dev} --gnss ${GOOD_GNSS} -o out.json)
+  device_input_case(bad_device_report_session_${dev} "not a text log"
+    report --session /dev/${dev} -o out.html)
+endforeach()
+# The same through a pipe: the first bytes are checked before the rest.
+function(shell_case name code match script)
+  add_test(NAME cli.${name}
+    COMMAND ${MPCAL_CLI_EXPECT} ${code} ${match} --workdir ${CMAKE_CURRENT_BINARY_DIR}/${name}
+            -- bash -c "${script}" $<TARGET_FILE:mpcal_cli>)
+  set_tests_properties(cli.${name} PROPERTIES LABELS cli)
+endfunction()
+shell_case(bad_pipe_apply_calib_urandom 1 "not a text file \\(binary data at byte"
+  "timeout 20 \"$0\" apply <(cat /dev/urandom) '${GOOD_LOG}' -o out.csv")
+shell_case(bad_pipe_verify_gnss_zero 1 "not a text file \\(binary data at byte 0"
+  "timeout 20 \"$0\" verify --imu '${GOOD_LOG}' --gnss <(cat /dev/zero) -o out.json")
+shell_case(bad_pipe_repeat_urandom 1 "not a text log"
+  "timeout 20 \"$0\" repeat '${GOOD_CALIB}' <(cat /dev/urandom) --json out.json")
+
+# repeat reads each input once: pipes and process substitutions work, for
+# calibration files and logs alike (issue 14: "too few columns").
+shell_case(repeat_process_substitution_json 0 "/dev/fd/[0-9]+: calibration file"
+  "\"$0\" repeat <(cat '${MPCAL_TEST_DATA}/paper/colibri_trial1.json') <(cat '${MPCAL_TEST_DATA}/paper/colibri_trial2.json')")
+shell_case(repeat_process_substitution_log 0 "/dev/fd/[0-9]+: calibrated, [0-9]+ positions"
+  "\"$0\" repeat <(cat '${_session}') '${GOOD_CALIB}'")
+
+# Warnings are held back when the command fails: one line (issue 14: all
+# timestamps zero printed two or three warnings before the error).
+shell_case(bad_calibrate_zero_times_one_line 1 "after .*warning"
+  "awk -F, 'NR==1{print;next}{$1=0; print}' OFS=, '${_session}' > zero.csv && exec \"$0\" calibrate zero.csv -o out.json")
+
+# Physically impossible readings: an error naming the line (issue 14: one
+# row of 1e308 gave 'threshold -nan', one of 1e20 dropped positions).
+shell_case(bad_calibrate_huge_row_1e308 1
+  "huge.csv:100: reading '1e308' in column 'ax' \\(index 1\\) is beyond any accelerometer's range"
+  "sed '100s/^\\([^,]*\\),[^,]*,/\\1,1e308,/' '${_session}' > huge.csv && exec \"$0\" calibrate huge.csv -o out.json")
+shell_case(bad_detect_huge_row_1e20 1
+  "huge.csv:200: reading '1e20' in column 'az' \\(index 3\\) is beyond any accelerometer's range"
+  "sed '200s/,[^,]*$/,1e20/' '${_session}' > huge.csv && exec \"$0\" detect huge.csv")
+shell_case(bad_calibrate_huge_times 1 "a time of 1e\\+300 s is beyond any logger's clock"
+  "awk -F, 'NR==1{print;next}{$1=$1*1e300; print}' OFS=, '${_session}' > t.csv && exec \"$0\" calibrate t.csv")
+
+# Absurd but finite values in a calibration file (issue 14: a bias of
+# 1e308 was applied), in ranges stated once (include/mpcal/plausible.h).
+shell_case(bad_apply_huge_bias 1 "'bias_mps2\\[0\\]' = 1e\\+308 is beyond any accelerometer's bias"
+  "sed '0,/-0.6860732339999999/s//1e308/' '${GOOD_CALIB}' > c.json && exec \"$0\" apply c.json '${GOOD_LOG}' -o out.csv")
+shell_case(bad_apply_gravity_out_of_range 1 "'gravity_mps2' = 10.4 is not a magnitude of gravity"
+  "sed 's/\"gravity_mps2\": [0-9.]*/\"gravity_mps2\": 10.4/' '${GOOD_CALIB}' > c.json && exec \"$0\" apply c.json '${GOOD_LOG}' -o out.csv")
+# verify and report --session run calibrate's units check.
+mpcal_cli_test(bad_verify_g_read_as_mps2 EXIT 1 MATCH "look like g: add --units g" ABSENT out.json
+  ARGS verify --imu ${MPCAL_REAL_DATA}/rtklib-walk/imu_1730_sf.csv
+       --columns t=0,ax=1,ay=2,az=3,gx=4,gy=5,gz=6
+       --gnss ${MPCAL_REAL_DATA}/rtklib-walk/gnss_1730_sf.pos -o out.json)
+mpcal_cli_test(bad_report_session_counts_as_mps2 EXIT 1 MATCH "look like raw ADC counts"
+  ABSENT out.html
+  ARGS report --session ${MPCAL_REAL_DATA}/xsens-multiposition/xsens_acc.mat -o out.html)

@@ -1,10 +1,13 @@
 #include "mpcal/atomic_file.h"
 
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -130,6 +133,71 @@ TEST(AtomicFile, UnwritableDirectory) {
                                                       std::filesystem::perms::owner_exec);
   EXPECT_THROW(WriteFileAtomically((dir.path() / "ro" / "out.txt").string(), "x"), Error);
   std::filesystem::permissions(dir.path() / "ro", std::filesystem::perms::owner_all);
+}
+
+// Issue 14: a rename over a device node or a link replaced it with a
+// regular file (as root, `-o /dev/null` would have replaced the system's).
+TEST(AtomicFile, SymlinkIsFollowedAndItsTargetReplaced) {
+  ScratchDir dir;
+  const std::string target = dir.Write("target.json", "old");
+  const std::string link = dir.Path("link.json");
+  std::filesystem::create_symlink("target.json", link);
+  WriteFileAtomically(link, "new");
+  EXPECT_TRUE(std::filesystem::is_symlink(link));
+  EXPECT_EQ(ReadFile(target), "new");
+  // A dangling link: the file it names is created.
+  const std::string dangling = dir.Path("dangling.json");
+  std::filesystem::create_symlink("created.json", dangling);
+  WriteFileAtomically(dangling, "made");
+  EXPECT_TRUE(std::filesystem::is_symlink(dangling));
+  EXPECT_EQ(ReadFile(dir.Path("created.json")), "made");
+}
+
+TEST(AtomicFile, FifoIsWrittenInPlace) {
+  ScratchDir dir;
+  const std::string fifo = dir.Path("pipe");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string received;
+  std::thread reader([&] { received = ReadFile(fifo); });
+  WriteFileAtomically(fifo, "through the pipe\n");
+  reader.join();
+  EXPECT_EQ(received, "through the pipe\n");
+  struct stat st {};
+  ASSERT_EQ(::lstat(fifo.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode));
+}
+
+TEST(AtomicFile, DeviceNodesAreWrittenInPlaceNeverReplaced) {
+  if (geteuid() != 0) GTEST_SKIP() << "mknod needs root";
+  ScratchDir dir;
+  const std::string null = dir.Path("null");
+  const std::string full = dir.Path("full");
+  ASSERT_EQ(::mknod(null.c_str(), S_IFCHR | 0666, makedev(1, 3)), 0);
+  ASSERT_EQ(::mknod(full.c_str(), S_IFCHR | 0666, makedev(1, 7)), 0);
+  EXPECT_NO_THROW(CheckOutput(null, {null}));  // a device named twice overwrites nothing
+  WriteFileAtomically(null, "discarded");
+  try {
+    WriteFileAtomically(full, "no room");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("No space left on device"));
+  }
+  for (const std::string& node : {null, full}) {
+    struct stat st {};
+    ASSERT_EQ(::lstat(node.c_str(), &st), 0);
+    EXPECT_TRUE(S_ISCHR(st.st_mode)) << node << " was replaced";
+  }
+  EXPECT_EQ(FilesIn(dir), 2u);
+}
+
+TEST(AtomicFile, EmptyNameAndClosedDescriptorAreRefused) {
+  EXPECT_THROW(WriteFileAtomically("", "x"), Error);
+  try {
+    CheckWritable("/dev/fd/987");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("file descriptor 987 is closed"));
+  }
 }
 
 TEST(RefuseOverwritingInput, SamePathLinkAndDifferentFiles) {

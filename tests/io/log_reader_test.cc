@@ -496,5 +496,65 @@ TEST(LogScanner, KeepsEveryLineAndTheSpansOfTheNumbers) {
   EXPECT_EQ(scanner.layout().time_column, 0);
 }
 
+// Issue 14: loggers as they are.
+TEST(ReadLog, SerialBootTextBeforeTheHeaderIsSkippedWithAWarning) {
+  ScratchDir dir;
+  std::string log = std::string("\xf8\x00\xfe\x1c", 4) +
+                    ",-0.0\r\nInitializing I2C devices...\r\n"
+                    "MPU6050 connection successful\r\nmillis,ax,ay,az\r\n";
+  for (int i = 0; i < 20; ++i) log += std::to_string(1000 + 10 * i) + ",0.1,0.2,9.8\r\n";
+  log += "1200,0.1,x,9.8\r\n1210,0.1,0.2,9.8\r\n";
+  const std::string path = dir.Write("serial.txt", log);
+  try {
+    ReadLog(path, {});
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    // Line numbers count the skipped lines: the bad row is line 25.
+    EXPECT_THAT(e.what(), HasSubstr("serial.txt:25: "));
+  }
+  const std::string good = log.substr(0, log.find("1200,"));
+  const Recording r = ReadLog(dir.Write("good.txt", good), {});
+  ASSERT_EQ(r.size(), 20u);
+  EXPECT_DOUBLE_EQ(r.time_s[1] - r.time_s[0], 0.01);  // `millis`: ms from the name
+  EXPECT_THAT(r.warnings, ::testing::Contains(HasSubstr(
+                              "skipped 3 lines before the header (serial boot text or a "
+                              "title); the header starts on line 4")));
+}
+
+TEST(ReadLog, TimeUnitFromTheColumnName) {
+  ScratchDir dir;
+  for (const auto& [name, step] : {std::pair{"timestamp_ms", 1e-3}, std::pair{"time_us", 1e-6},
+                                   std::pair{"\"Time (s)\"", 1.0}, std::pair{"micros", 1e-6}}) {
+    std::string log = std::string(name) + ",ax,ay,az\n";
+    for (int i = 0; i < 10; ++i) log += std::to_string(5 * i) + ",0,0,9.8\n";
+    const Recording r = Read(dir, log);
+    EXPECT_DOUBLE_EQ(r.time_s[1] - r.time_s[0], 5 * step) << name;
+  }
+}
+
+TEST(ReadLog, AnIndexSteppingByOneAsksForTheRate) {
+  ScratchDir dir;
+  std::string log;
+  for (int i = 0; i < 20; ++i) log += std::to_string(i) + " 0.01 0.02 1.0\n";
+  EXPECT_THAT(ReadError(dir, log),
+              HasSubstr("steps by exactly 1 on every row: it is a sample index, not a time"));
+  LogOptions with_rate;
+  with_rate.rate_hz = 100.0;
+  EXPECT_DOUBLE_EQ(Read(dir, log, with_rate).time_s[1], 0.01);
+}
+
+TEST(ReadLog, ImpossibleReadingIsAnErrorNamingTheLine) {
+  ScratchDir dir;
+  EXPECT_THAT(ReadError(dir, "t,ax,ay,az\n0,0,0,9.8\n0.01,1e20,0,9.8\n0.02,0,0,9.8\n"),
+              HasSubstr("log.txt:3: reading '1e20' in column 'ax' (index 1) is beyond any "
+                        "accelerometer's range"));
+  // 30,000 g read as g is impossible; as counts it is a reading.
+  const std::string counts = "t,ax,ay,az\n0,0,0,30000\n0.01,0,0,30001\n";
+  EXPECT_THAT(ReadError(dir, counts, WithUnits(AccelUnits::kG)), HasSubstr("beyond"));
+  EXPECT_EQ(Read(dir, counts, WithUnits(AccelUnits::kCounts)).size(), 2u);
+  EXPECT_THAT(ReadError(dir, "t,ax,ay,az\n1e300,0,0,9.8\n2e300,0,0,9.8\n"),
+              HasSubstr("a time of 2e+300 s is beyond any logger's clock"));
+}
+
 }  // namespace
 }  // namespace mpcal

@@ -1,0 +1,59 @@
+/// \file plausible.h
+/// \brief What is physically plausible, stated once: the ranges every reader
+/// and every option check tests values against.
+///
+/// A value outside these ranges is not a poor sensor but a corrupt line, a
+/// wrong unit or a file that is not what it claims; mpcal refuses it rather
+/// than compute with it (a bias of 1e308 m/s² would otherwise be applied).
+#pragma once
+
+#include <cmath>
+
+#include "mpcal/units.h"
+
+namespace mpcal {
+
+/// Gravity's magnitude anywhere a sensor is calibrated on Earth: 9.78 m/s²
+/// at the equator to 9.83 at the poles at sea level, a few mGal less on a
+/// mountain top; the range leaves margin for both (m/s²).
+inline constexpr double kMinGravityMps2 = 9.7;
+inline constexpr double kMaxGravityMps2 = 9.9;
+inline bool IsPlausibleGravity(double g_mps2) {
+  return g_mps2 >= kMinGravityMps2 && g_mps2 <= kMaxGravityMps2;
+}
+
+/// The largest acceleration any accelerometer reports: shock sensors reach a
+/// few thousand g; 10,000 g leaves margin. A reading beyond it, in the
+/// log's declared units, is a corrupt value or the wrong unit.
+inline constexpr double kMaxReadingG = 1e4;
+/// The largest raw reading: a signed 32-bit ADC output.
+inline constexpr double kMaxReadingCounts = 2147483648.0;
+/// kMaxReadingG (or kMaxReadingCounts) expressed in `units`.
+inline double MaxReading(AccelUnits units) {
+  switch (units) {
+    case AccelUnits::kMps2:
+      return kMaxReadingG * kStandardGravityMps2;
+    case AccelUnits::kG:
+      return kMaxReadingG;
+    case AccelUnits::kCounts:
+      return kMaxReadingCounts;
+  }
+  return kMaxReadingCounts;
+}
+
+/// The largest time stamp in seconds: about 31,700 years, beyond any
+/// logger's clock (Unix time is 1.8e9 s; in ms read as seconds, 1.8e12).
+inline constexpr double kMaxTimeS = 1e12;
+
+/// A calibration's parameters, in SI: a bias beyond 10 g is not an
+/// accelerometer's (consumer parts: below 1 g); a scale-factor error beyond
+/// ±0.5 (50 %) and a non-orthogonality angle of π/4 (45°) or more are not a
+/// sensor's but a broken fit or a corrupt file.
+inline constexpr double kMaxBiasMps2 = 10.0 * kStandardGravityMps2;
+inline constexpr double kMaxScaleFactorError = 0.5;
+inline constexpr double kMaxNonOrthogonalityRad = 0.7853981633974483;
+/// Counts per g of a raw-counts calibration: 1 (a float "count") to 2^31.
+inline constexpr double kMinCountsPerG = 1e-3;
+inline constexpr double kMaxCountsPerG = 2147483648.0;
+
+}  // namespace mpcal

@@ -1,0 +1,40 @@
+# Logs as loggers write them (issue 14): each calibrates with no hand edit.
+# The files and how they were made: tests/data/loggers/README.md.
+set(_lg ${MPCAL_TEST_DATA}/loggers)
+# Arduino MPU-6050 over serial: noise and boot messages before the header,
+# raw counts, `millis` time stamps.
+mpcal_cli_test(logger_arduino_serial_boot_text EXIT 0
+  MATCH "skipped 4 lines before the header \\(serial boot text or a title\\); the header starts on line 5"
+  ARGS calibrate ${_lg}/arduino_mpu6050_serial.txt --units counts -o calib.json)
+mpcal_cli_test(logger_arduino_calibrates EXIT 0 MATCH "static positions: 18 used"
+  ARGS calibrate ${_lg}/arduino_mpu6050_serial.txt --units counts -o calib.json)
+# A phone app's export, two locales; `Time (s)` names its unit.
+mpcal_cli_test(logger_phone_export_en EXIT 0 MATCH "static positions: 18 used"
+  ARGS calibrate ${_lg}/phone_export_en.csv -o calib.json)
+mpcal_cli_test(logger_phone_export_de EXIT 0 MATCH "static positions: 18 used"
+  ARGS calibrate ${_lg}/phone_export_de.csv -o calib.json)
+# ADXL345 with a sample counter: a clear error without the rate, a
+# calibration with it.
+mpcal_cli_test(logger_adxl345_index_needs_rate EXIT 1
+  MATCH "column 'column 0' steps by exactly 1 on every row: it is a sample index, not a time"
+  ABSENT calib.json ARGS calibrate ${_lg}/adxl345_sample_index.txt --units g -o calib.json)
+mpcal_cli_test(logger_adxl345_index_with_rate EXIT 0 MATCH "static positions: 18 used"
+  ARGS calibrate ${_lg}/adxl345_sample_index.txt --units g --rate 100 -o calib.json)
+# 12 positions in one hemisphere.
+mpcal_cli_test(logger_one_hemisphere EXIT 0 MATCH "static positions: 12 used"
+  ARGS calibrate ${_lg}/one_hemisphere_12.csv --units g -o calib.json)
+# The calibration file records how the log was read: apply reads the same
+# logger's logs without the flags repeated (here the rate of the index).
+add_test(NAME cli.logger_apply_uses_recorded_layout
+  COMMAND ${MPCAL_CLI_EXPECT} 0 "corrected [0-9]+ rows"
+          --workdir ${CMAKE_CURRENT_BINARY_DIR}/logger_apply_uses_recorded_layout
+          -- sh -c "\"$0\" calibrate '${_lg}/adxl345_sample_index.txt' --units g --rate 100 -o c.json >/dev/null && grep -q '\"columns\": \"t=0,ax=1,ay=2,az=3\"' c.json && exec \"$0\" apply c.json '${_lg}/adxl345_sample_index.txt' -o out.txt"
+          $<TARGET_FILE:mpcal_cli>)
+set_tests_properties(cli.logger_apply_uses_recorded_layout PROPERTIES LABELS cli)
+# The datasheet's sensitivity, recorded as the scale reference.
+add_test(NAME cli.logger_counts_per_g_datasheet
+  COMMAND ${MPCAL_CLI_EXPECT} 0 "\"scale_reference\": \"datasheet\""
+          --workdir ${CMAKE_CURRENT_BINARY_DIR}/logger_counts_per_g_datasheet
+          -- sh -c "\"$0\" calibrate '${_lg}/arduino_mpu6050_serial.txt' --units counts --counts-per-g 16384 -o c.json >/dev/null && cat c.json"
+          $<TARGET_FILE:mpcal_cli>)
+set_tests_properties(cli.logger_counts_per_g_datasheet PROPERTIES LABELS cli)
