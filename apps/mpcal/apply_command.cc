@@ -26,6 +26,7 @@ struct ApplyFlags {
   std::string output;
   ApplyOptions options;
   std::optional<AccelUnits> out_units;
+  std::optional<GyroUnits> out_gyro_units;
 };
 
 void RunApply(CLI::App& cmd, ApplyFlags& flags) {
@@ -50,6 +51,12 @@ void RunApply(CLI::App& cmd, ApplyFlags& flags) {
     options.log.rate_hz = layout.rate_hz;
   }
   options.out_units = flags.out_units;
+  options.out_gyro_units = flags.out_gyro_units;
+  // Likewise the gyroscope columns: in the calibration's units unless told.
+  if (calibration.gyroscope && cmd.count("--gyro-units") == 0) {
+    options.log.gyro_in_counts = calibration.gyroscope->input_units == GyroUnits::kCounts;
+    options.log.gyro_in_dps = calibration.gyroscope->input_units == GyroUnits::kDps;
+  }
   TerminalProgress progress("applying " + flags.calibration + " to " + flags.input);
   options.log.progress = progress.Callback();
   const ApplyResult result = [&] {
@@ -77,6 +84,9 @@ void RunApply(CLI::App& cmd, ApplyFlags& flags) {
   if (flags.output != "-") {
     fmt::print("corrected {} rows of '{}' into '{}' (accelerometer in {}",
                result.data_rows, flags.input, flags.output, ToString(result.out_units));
+    if (result.gyro_corrected) {
+      fmt::print(", gyroscope in {}", result.out_gyro_units == GyroUnits::kDps ? "deg/s" : "rad/s");
+    }
     if (result.rest_magnitude_mps2) {
       fmt::print("; |a| at rest {:.5f} m/s², gravity {:.5f} m/s²", *result.rest_magnitude_mps2,
                  calibration.gravity_mps2);
@@ -91,8 +101,9 @@ void AddApplyCommand(CLI::App& root) {
   auto flags = std::make_shared<ApplyFlags>();
   CLI::App* cmd = root.add_subcommand(
       "apply",
-      "Correct a log with a calibration file: every accelerometer row by eqs 8-10; the other "
-      "columns, the header, comments and row order kept as they are.");
+      "Correct a log with a calibration file: every accelerometer row by eqs 8-10, and the "
+      "gyroscope columns by ω = M (raw − b) with an IMU calibration; the other columns, the "
+      "header, comments and row order kept as they are.");
   cmd->add_option("CALIB", flags->calibration,
                   "Calibration file (JSON) written by 'mpcal calibrate'")
       ->required();
@@ -109,10 +120,18 @@ void AddApplyCommand(CLI::App& root) {
                   "log's units; m/s2 for a log in counts)")
       ->transform(OneOf(out_units))
       ->group("Output");
+  const std::vector<std::pair<std::string, GyroUnits>> out_gyro_units{
+      {"rads", GyroUnits::kRadps}, {"dps", GyroUnits::kDps}};
+  cmd->add_option("--out-gyro-units", flags->out_gyro_units,
+                  "Units of the corrected gyroscope columns (an IMU calibration): rads or dps "
+                  "(default: the log's units; rad/s for a log in counts)")
+      ->transform(OneOf(out_gyro_units))
+      ->group("Output");
   cmd->footer(
       "Example:\n"
       "  mpcal apply calib.json session.csv -o corrected.csv\n"
       "  logger | mpcal apply calib.json - -o - --out-units g | plot\n"
+      "  mpcal apply imu.json imu_session.csv -o corrected.csv --out-gyro-units dps\n"
       "The log is read with the calibration's units unless --units is given, and with the\n"
       "columns, time unit and rate the calibration was made with unless --columns,\n"
       "--time-unit or --rate is given; a log whose magnitude at rest is far from the\n"

@@ -7,12 +7,14 @@
 #include <fmt/format.h>
 
 #include "calibration_table.h"
+#include "gyro_table.h"
 #include "cli_options.h"
 #include "command.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/calibration_file.h"
 #include "mpcal/error.h"
+#include "mpcal/gyro_log.h"
 #include "mpcal/log_reader.h"
 #include "progress.h"
 
@@ -22,6 +24,7 @@ namespace {
 struct CalibrateFlags {
   std::string input;
   std::string output;
+  std::string gyro_log;
   LogOptions log;
   GravityFlags gravity;
   CalibrateOptions calibrate;
@@ -64,6 +67,13 @@ std::optional<Calibration::InputLayout> RecordedLayout(const std::string& input,
     columns += fmt::format("{}{}={}", columns.empty() ? "" : ",", kKeys[i],
                            name(layout.accel_columns[static_cast<std::size_t>(i)]));
   }
+  if (layout.has_gyro()) {
+    static constexpr const char* kGyroKeys[] = {"gx", "gy", "gz"};
+    for (int i = 0; i < 3; ++i) {
+      columns += fmt::format(",{}={}", kGyroKeys[i],
+                             name(layout.gyro_columns[static_cast<std::size_t>(i)]));
+    }
+  }
   Calibration::InputLayout out;
   out.columns = columns;
   out.time_unit = std::string(ToString(layout.time_unit));
@@ -71,16 +81,30 @@ std::optional<Calibration::InputLayout> RecordedLayout(const std::string& input,
   return out;
 }
 
+GyroUnits GyroUnitsOf(const LogOptions& log) {
+  if (log.gyro_in_counts) return GyroUnits::kCounts;
+  return log.gyro_in_dps ? GyroUnits::kDps : GyroUnits::kRadps;
+}
+
 void Run(CalibrateFlags& f) {
-  if (!f.output.empty()) CheckOutput(f.output, {f.input});
+  if (!f.output.empty()) CheckOutput(f.output, {f.input, f.gyro_log});
   f.calibrate.solve.gravity_mps2 = f.gravity.Resolve();
   ThrowIfInvalid(f.calibrate.Validate(), "calibrate");
 
   TerminalProgress progress("reading " + f.input);
   f.log.progress = progress.Callback();
-  const Recording recording = ReadLog(f.input, f.log);
+  Recording recording = ReadLog(f.input, f.log);
   progress.Done();
   PrintWarnings(recording.warnings);
+  if (!f.gyro_log.empty()) {
+    // The gyroscope's own file: t, x, y, z, row by row with the input.
+    LogOptions gyro_options;
+    gyro_options.time_unit = f.log.time_unit;
+    gyro_options.rate_hz = f.log.rate_hz;
+    const Recording gyro = ReadLog(f.gyro_log, gyro_options);
+    PrintWarnings(gyro.warnings);
+    MergeGyroLog(recording, gyro, GyroUnitsOf(f.log));
+  }
 
   if (f.calibrate.counts_per_g > 0.0 && f.log.units != AccelUnits::kCounts) {
     throw Error("--counts-per-g is the scale of raw counts: it goes with --units counts");
@@ -94,7 +118,14 @@ void Run(CalibrateFlags& f) {
              recording.size(), recording.time_s.back() - recording.time_s.front(),
              ToString(f.calibrate.solve.model), f.calibrate.solve.gravity_mps2);
   fmt::print("{}\n{}", FormatParameterTable(result.calibration), FormatFitSummary(result));
+  if (result.gyro) {
+    if (result.calibration.gyroscope) {
+      fmt::print("\n{}", FormatGyroTable(*result.calibration.gyroscope));
+    }
+    fmt::print("{}", FormatGyroSummary(*result.gyro));
+  }
   PrintWarnings(result.warnings);
+  if (result.gyro) PrintWarnings(GyroFindingMessages(*result.gyro));
   if (!result.solve.converged()) {
     throw Error(fmt::format("{}: the fit did not converge ({}); no calibration written. "
                             "Check the positions with 'mpcal detect {}'",
@@ -113,20 +144,34 @@ void AddCalibrateCommand(CLI::App& root) {
   CLI::App* app = root.add_subcommand(
       "calibrate",
       "Detect the static positions in a log, estimate bias, scale-factor errors and "
-      "non-orthogonality with their 1σ, and write a calibration file");
+      "non-orthogonality with their 1σ, and the gyroscope (M and bias) from the turns "
+      "between the positions when the log has one; write a calibration file");
   app->add_option("INPUT", flags->input, "Log: CSV or text, '-' for standard input")
       ->required();
   app->add_option("-o,--output", flags->output,
-                  "Calibration file to write (JSON, mpcal.accelerometer/1); without it, "
-                  "only print")
+                  "Calibration file to write (JSON: mpcal.imu/1 with the gyroscope, "
+                  "mpcal.accelerometer/1 without); without it, only print")
       ->check(OutputPath);
+  app->add_option("--gyro-log", flags->gyro_log,
+                  "The gyroscope in a file of its own (t, x, y, z; the same rows as INPUT, "
+                  "in --gyro-units)")
+      ->group("Input log");
   AddLogOptions(*app, flags->log);
+  app->add_option("--gyro-window", flags->calibrate.gyro.direction_window_s,
+                  "Gravity direction at each end of a turn: the accelerometer's mean over this "
+                  "long (s) next to the turn; 0 = the whole position")
+      ->capture_default_str()
+      ->check(NonNegativeNumber)
+      ->group("Gyroscope");
   AddGravityOptions(*app, flags->gravity);
   AddCalibrateOptions(*app, flags->calibrate);
   app->footer(
       "Examples:\n"
       "  mpcal calibrate session.csv -o calib.json\n"
       "  mpcal calibrate xsens_acc.mat --units counts --gravity 9.81744 -o xsens.json\n"
+      "  mpcal calibrate imu.csv --gyro-units dps -o imu.json   (columns ax..az, gx..gz)\n"
+      "  mpcal calibrate xsens_acc.mat --gyro-log xsens_gyro.mat --units counts \\\n"
+      "      --gyro-units counts --gravity 9.81744 -o xsens_imu.json\n"
       "  mpcal calibrate six_poses.csv --model bias-scale-6 --latitude 49.6 --height 300\n"
       "  mpcal calibrate arduino_serial.txt --units counts --counts-per-g 16384 -o mpu6050.json");
   app->callback([flags] { Run(*flags); });

@@ -64,11 +64,16 @@ void AddLogOptions(CLI::App& app, LogOptions& options) {
       ->check(PositiveNumber)
       ->group("Input log");
   const std::vector<std::pair<std::string, std::string>> gyro_units{
-      {"rads", "rads"}, {"rad/s", "rads"}, {"dps", "dps"}, {"deg/s", "dps"}};
+      {"rads", "rads"}, {"rad/s", "rads"}, {"dps", "dps"}, {"deg/s", "dps"},
+      {"counts", "counts"}};
   app.add_option_function<std::string>(
          "--gyro-units",
-         [&options](const std::string& unit) { options.gyro_in_dps = unit == "dps"; },
-         "Units of the gyroscope columns: rads (rad/s, the default) or dps (deg/s)")
+         [&options](const std::string& unit) {
+           options.gyro_in_dps = unit == "dps";
+           options.gyro_in_counts = unit == "counts";
+         },
+         "Units of the gyroscope columns: rads (rad/s, the default), dps (deg/s) or counts "
+         "(raw ADC; zero measured at every position, scale found from the turns)")
       ->transform(OneOf(gyro_units))
       ->default_str("rads")
       ->group("Input log");

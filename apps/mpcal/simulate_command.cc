@@ -41,6 +41,10 @@ struct SimulateStaticFlags {
   double shake_accel_mps2 = 1.5;
   double shake_rotation_deg = 3.0;
   bool gyro = false;
+  std::string gyro_units = "rads";
+  double gyro_counts_per_radps = 4780.0;
+  std::optional<double> gyro_noise_density;
+  std::optional<double> earth_rate_latitude_deg;
   std::optional<int> trials;
   int digits = 9;
   GravityFlags gravity;
@@ -74,6 +78,10 @@ SimulateStaticOptions ToOptions(const SimulateStaticFlags& f) {
   o.shake_accel_mps2 = f.shake_accel_mps2;
   o.shake_rotation_deg = f.shake_rotation_deg;
   o.gyro = f.gyro;
+  o.gyro_units = *ParseGyroUnits(f.gyro_units);
+  o.gyro_counts_per_radps = f.gyro_counts_per_radps;
+  if (f.gyro_noise_density) o.gyro_noise_density_radps_per_sqrt_hz = *f.gyro_noise_density;
+  o.earth_rate_latitude_deg = f.earth_rate_latitude_deg;
   if (f.noise_density) o.device.noise_density_mps2_per_sqrt_hz = *f.noise_density;
   if (f.turn_on_spread_g.size() == 1) {
     o.device.turn_on_bias_std_mps2.setConstant(f.turn_on_spread_g[0] *
@@ -161,7 +169,7 @@ void Run(const SimulateStaticFlags& f) {
         options.turn_s,
         options.initial_rest_s,
         units,
-        options.gyro ? " with gyroscope (rad/s)" : "",
+        options.gyro ? (options.gyro_units == GyroUnits::kCounts ? " with gyroscope (counts)" : " with gyroscope (rad/s)") : "",
         s.noise_std_mps2.x(),
         options.device.noise_density_mps2_per_sqrt_hz,
         s.quantisation_step_mps2 > 0
@@ -329,7 +337,29 @@ void AddSimulateStaticCommand(CLI::App& simulate) {
   app->add_option("--counts-offset", f->counts_offset, "ADC zero, with --units counts")
       ->capture_default_str()
       ->group("Sensor");
-  app->add_flag("--gyro", f->gyro, "Also write gyroscope columns gx,gy,gz (rad/s)")
+  app->add_flag("--gyro", f->gyro,
+                "Also write gyroscope columns gx,gy,gz with the device's gyroscope errors "
+                "(scale, misalignment, bias with a slow random walk, white noise); the truth "
+                "file becomes an IMU file (mpcal.imu/1) with them")
+      ->group("Sensor");
+  app->add_option("--gyro-units", f->gyro_units,
+                  "Units of the gyroscope columns: rads or counts (integers: 32768 + "
+                  "reading·gyro-counts-per-radps)")
+      ->transform(OneOf<std::string>({{"rads", "rads"}, {"counts", "counts"}}))
+      ->capture_default_str()
+      ->group("Sensor");
+  app->add_option("--gyro-counts-per-radps", f->gyro_counts_per_radps,
+                  "Gyroscope ADC sensitivity, with --gyro-units counts")
+      ->capture_default_str()
+      ->check(PositiveNumber)
+      ->group("Sensor");
+  app->add_option("--gyro-noise-density", f->gyro_noise_density,
+                  "Gyroscope white-noise density (rad/s/√Hz); default the device's")
+      ->check(NonNegativeNumber)
+      ->group("Sensor");
+  app->add_option("--earth-rate", f->earth_rate_latitude_deg,
+                  "Add the Earth's rotation at this latitude (deg) to the gyroscope")
+      ->check(CLI::Range(-90.0, 90.0))
       ->group("Sensor");
   app->add_option("--digits",
                   f->digits,
@@ -345,7 +375,8 @@ void AddSimulateStaticCommand(CLI::App& simulate) {
       "  mpcal calibrate session.csv -o calib.json\n"
       "  mpcal simulate static --preset colibri --units g --trials 3 -o s.csv --truth "
       "t.json\n"
-      "    (writes s_1.csv s_2.csv s_3.csv and t_1.json t_2.json t_3.json)");
+      "    (writes s_1.csv s_2.csv s_3.csv and t_1.json t_2.json t_3.json)\n"
+      "  mpcal simulate static --preset colibri --gyro -o imu.csv --truth imu_truth.json");
   app->callback([f] { Run(*f); });
 }
 

@@ -54,6 +54,23 @@ class Corrector {
 /// \throws mpcal::Error naming both units and what to do.
 void CheckCalibrationApplies(const Calibration& calibration, AccelUnits log_units);
 
+/// The gyroscope's correction folded into one affine map, ω = A·r − c, from
+/// a reading `r` in the log's gyroscope units to the angular rate in
+/// `out_units` (kRadps or kDps).
+class GyroCorrector {
+ public:
+  /// 	hrows mpcal::Error when the calibration is for raw counts and the
+  ///   log is not (or the other way round).
+  GyroCorrector(const GyroCalibration& gyro, GyroUnits log_units, GyroUnits out_units);
+  Eigen::Vector3d operator()(const Eigen::Vector3d& reading) const {
+    return matrix_ * reading - offset_;
+  }
+
+ private:
+  Eigen::Matrix3d matrix_;
+  Eigen::Vector3d offset_;
+};
+
 struct ApplyOptions {
   /// How to read the input log (columns, delimiters, units, time unit). Its
   /// `units` must match the calibration (CheckCalibrationApplies).
@@ -62,6 +79,10 @@ struct ApplyOptions {
   /// input's units, except for raw counts, whose corrected values are written
   /// in m/s².
   std::optional<AccelUnits> out_units;
+  /// Units of the corrected gyroscope columns (a calibration with a
+  /// gyroscope, a log with gyroscope columns): kRadps or kDps. Empty: the
+  /// log's units, except for raw counts, written in rad/s.
+  std::optional<GyroUnits> out_gyro_units;
   /// A warning is given when the median corrected magnitude over the log's
   /// quietest stretches differs from the calibration's gravity by more than
   /// this fraction (wrong units or another sensor). 0.05 is far above what a
@@ -77,6 +98,9 @@ struct ApplyResult {
   /// Comment, header and blank lines copied.
   std::size_t other_lines = 0;
   AccelUnits out_units = AccelUnits::kMps2;
+  /// Whether the gyroscope columns were corrected too, and in which units.
+  bool gyro_corrected = false;
+  GyroUnits out_gyro_units = GyroUnits::kRadps;
   /// Median corrected |a| (m/s²) over the quietest stretches of the log's
   /// start (up to about 260,000 rows); empty when the log has no rows.
   std::optional<double> rest_magnitude_mps2;

@@ -4,11 +4,13 @@
 /// initialise, solve, and package the result as a Calibration.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "mpcal/calibration.h"
 #include "mpcal/detect.h"
+#include "mpcal/gyro.h"
 #include "mpcal/recording.h"
 #include "mpcal/solve.h"
 
@@ -23,6 +25,10 @@ struct CalibrateOptions {
   /// biases are relative to the datasheet; the file records which
   /// (Calibration::scale_reference).
   double counts_per_g = 0.0;
+  /// The gyroscope, when the recording has one (gyro.h).
+  GyroOptions gyro;
+  /// Calibrate the gyroscope too when the recording has gyroscope readings.
+  bool calibrate_gyroscope = true;
   std::string Validate() const;
 };
 
@@ -33,6 +39,9 @@ struct CalibrateResult {
   /// Factor applied to the recording's units to get nominal m/s².
   double mps2_per_unit = 1.0;
   SolveResult solve;
+  /// The gyroscope's fit, when the recording has one and the accelerometer
+  /// converged. calibration.gyroscope is set only when it converged.
+  std::optional<GyroResult> gyro;
   /// What goes into the calibration file.
   Calibration calibration;
   std::vector<std::string> warnings;

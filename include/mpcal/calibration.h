@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "mpcal/gyro_calibration.h"
 #include "mpcal/model.h"
 #include "mpcal/units.h"
 
@@ -93,6 +94,9 @@ struct Calibration {
   /// parameters, excluded positions, ...).
   std::vector<std::string> warnings;
   std::optional<Provenance> provenance;
+  /// The gyroscope of the same IMU, when the log had one (an IMU file,
+  /// format mpcal.imu/1); nullopt for an accelerometer-only calibration.
+  std::optional<GyroCalibration> gyroscope;
 
   /// Specific force (m/s²) from a reading in `input_units`.
   Eigen::Vector3d Correct(const Eigen::Vector3d& reading) const {

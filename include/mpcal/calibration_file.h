@@ -11,6 +11,9 @@ namespace mpcal {
 
 /// The format tag this version writes.
 inline constexpr const char* kCalibrationFormat = "mpcal.accelerometer/1";
+/// The format tag of an IMU file: the accelerometer's fields as above plus a
+/// `gyroscope` block (Calibration::gyroscope set). Readers take both.
+inline constexpr const char* kImuCalibrationFormat = "mpcal.imu/1";
 
 /// Serialises to the JSON text of the file (pretty-printed, newline-ended).
 std::string CalibrationToJson(const Calibration& calibration);

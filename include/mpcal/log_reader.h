@@ -51,6 +51,10 @@ struct LogOptions {
   AccelUnits units = AccelUnits::kMps2;
   /// Units of the gyroscope columns: rad/s, or deg/s when true.
   bool gyro_in_dps = false;
+  /// The gyroscope columns are raw ADC counts, kept as read
+  /// (Recording::gyro_units kCounts; the scale is found from the turns).
+  /// Takes precedence over gyro_in_dps.
+  bool gyro_in_counts = false;
   /// Unit of the time column. kAuto: seconds for non-integer values; for
   /// integer timestamps ns/µs/ms detected from the typical sample spacing
   /// (or a sample index when `rate_hz` is given and the spacing is 1).
@@ -127,6 +131,8 @@ struct LogLine {
   /// Data lines only: byte range [first, second) of each accelerometer
   /// number within `text` (x, y, z), so that it can be replaced.
   std::array<std::pair<std::uint32_t, std::uint32_t>, 3> accel_span{};
+  /// The same for the gyroscope numbers, when the scanner parses them.
+  std::array<std::pair<std::uint32_t, std::uint32_t>, 3> gyro_span{};
 };
 
 /// Streams a log line by line. Comments, blank lines and the header are

@@ -19,8 +19,13 @@ struct Recording {
   std::vector<double> time_s;
   /// Accelerometer readings (x, y, z) in `units`.
   std::vector<Eigen::Vector3d> accel;
-  /// Gyroscope readings (rad/s); empty when the log has none.
+  /// Gyroscope readings (rad/s); empty when the log has none. Raw counts
+  /// when `gyro_units` is GyroUnits::kCounts (their scale is found from the
+  /// session's turns).
   std::vector<Eigen::Vector3d> gyro_radps;
+  /// kRadps for readings in rad/s (logs in deg/s are converted on reading),
+  /// kCounts for raw counts.
+  GyroUnits gyro_units = GyroUnits::kRadps;
   AccelUnits units = AccelUnits::kMps2;
   /// Where it came from (file name, or "<simulated>"), for messages.
   std::string source;

@@ -54,6 +54,16 @@ struct DevicePreset {
   double resolution_mps2 = 0.0;
   /// Spread of the bias from one power-up to the next (1σ, m/s² per axis).
   Eigen::Vector3d turn_on_bias_std_mps2 = Eigen::Vector3d::Zero();
+  /// The gyroscope's errors (gyro_calibration.h): the true rate is
+  /// ω = gyro_m (reading − bias), so a reading is gyro_m⁻¹ ω + bias + noise.
+  /// gyro_m holds the scale factors on its diagonal and the misalignments
+  /// (rad) off it.
+  Eigen::Matrix3d gyro_m = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d gyro_bias_radps = Eigen::Vector3d::Zero();
+  /// White-noise density of the gyroscope (rad/s/√Hz, one-sided), and the
+  /// random walk of its bias (rad/s/√s, the rate random walk K).
+  double gyro_noise_density_radps_per_sqrt_hz = 1e-3;
+  double gyro_bias_walk_radps_per_sqrt_s = 0.0;
 };
 
 /// The preset called `name`: "colibri", "inertiacube3" or "mti-g"
@@ -96,10 +106,20 @@ struct SimulateStaticOptions {
   /// the ends of a turn; still parts have only sensor noise.
   double shake_accel_mps2 = 1.5;
   double shake_rotation_deg = 3.0;
-  /// Also simulate gyroscope readings (rad/s): the true angular rate plus
-  /// white noise of this density (rad/s/√Hz). Off by default.
+  /// Also simulate gyroscope readings: the true angular rate through the
+  /// device's gyroscope errors (device.gyro_m, device.gyro_bias_radps, its
+  /// random walk) plus white noise of this density (rad/s/√Hz; negative:
+  /// the device's). Off by default.
   bool gyro = false;
-  double gyro_noise_density_radps_per_sqrt_hz = 1e-3;
+  double gyro_noise_density_radps_per_sqrt_hz = -1.0;
+  /// Add the Earth's rotation (7.292115e-5 rad/s) at this latitude to the
+  /// true rate; nullopt: none.
+  std::optional<double> earth_rate_latitude_deg;
+  /// Units of the gyroscope columns: rad/s, or counts, an ADC reading
+  /// round(gyro_counts_offset + reading_radps × gyro_counts_per_radps).
+  GyroUnits gyro_units = GyroUnits::kRadps;
+  double gyro_counts_offset = 32768.0;
+  double gyro_counts_per_radps = 4780.0;
   /// Units written: m/s²; g (readings divided by 9.80665); or counts, an ADC
   /// reading round(counts_offset + reading_mps2 × counts_per_mps2).
   AccelUnits units = AccelUnits::kMps2;
@@ -131,6 +151,12 @@ struct SimulatedSession {
   double quantisation_step_mps2 = 0.0;
   /// The sample rate used (Hz).
   double rate_hz = 0.0;
+  /// With the gyroscope: its per-sample white-noise σ (rad/s, on reading ×
+  /// radps_per_unit) and the true angular rate at every sample (rad/s, body
+  /// frame), which truth.gyroscope's Correct returns up to the noise and the
+  /// bias walk (truth.gyroscope's bias is the one at time 0).
+  double gyro_noise_std_radps = 0.0;
+  std::vector<Eigen::Vector3d> true_rate_radps;
 };
 
 /// Simulates one hand-held static session: initial rest, then for each

@@ -27,4 +27,19 @@ std::optional<AccelUnits> ParseAccelUnits(std::string_view name);
 /// m/s² per unit for kMps2 and kG; nullopt for kCounts (found from data).
 std::optional<double> FixedMps2PerUnit(AccelUnits units);
 
+/// Units of gyroscope readings: rad/s, deg/s, or raw ADC counts whose nominal
+/// scale (rad/s per count) is found from the turns of a session.
+enum class GyroUnits {
+  kRadps,   ///< radians per second
+  kDps,     ///< degrees per second
+  kCounts,  ///< raw ADC counts
+};
+
+/// "rads", "dps" or "counts".
+std::string_view ToString(GyroUnits units);
+/// Inverse of ToString (also "rad/s", "deg/s"); nullopt if unknown.
+std::optional<GyroUnits> ParseGyroUnits(std::string_view name);
+/// rad/s per unit for kRadps and kDps; nullopt for kCounts (found from data).
+std::optional<double> FixedRadpsPerUnit(GyroUnits units);
+
 }  // namespace mpcal

@@ -169,11 +169,34 @@ Corrector::Corrector(const Calibration& calibration, AccelUnits log_units,
   }
 }
 
+GyroCorrector::GyroCorrector(const GyroCalibration& gyro, GyroUnits log_units,
+                             GyroUnits out_units) {
+  const bool cal_counts = gyro.input_units == GyroUnits::kCounts;
+  if (cal_counts != (log_units == GyroUnits::kCounts)) {
+    throw Error(fmt::format(
+        "the gyroscope calibration is for readings in '{}' but the log's gyroscope is read as "
+        "'{}': raw counts and physical units do not convert without the sensor's scale; read "
+        "the log in the calibration's units",
+        ToString(gyro.input_units), ToString(log_units)));
+  }
+  // Readings in the log's unit → the calibration's unit → its nominal rad/s.
+  const double in_radps = cal_counts ? gyro.radps_per_unit : *FixedRadpsPerUnit(log_units);
+  const double out_per_radps = 1.0 / *FixedRadpsPerUnit(out_units);
+  matrix_ = gyro.m * (in_radps * out_per_radps);
+  offset_ = gyro.m * gyro.bias_radps * out_per_radps;
+  if (!matrix_.allFinite() || !offset_.allFinite()) {
+    throw Error("the calibration's gyroscope model is not finite");
+  }
+}
+
 std::string ApplyOptions::Validate() const {
   const std::string log_problem = log.Validate();
   if (!log_problem.empty()) return "log." + log_problem;
   if (out_units && *out_units == AccelUnits::kCounts) {
     return "out_units must be mps2 or g (corrected readings have no counts)";
+  }
+  if (out_gyro_units && *out_gyro_units == GyroUnits::kCounts) {
+    return "out_gyro_units must be rads or dps (corrected rates have no counts)";
   }
   if (!(rest_tolerance > 0.0) || !std::isfinite(rest_tolerance)) {
     return fmt::format("rest_tolerance must be a positive fraction, got {}", rest_tolerance);
@@ -199,8 +222,19 @@ ApplyResult ApplyCalibration(const Calibration& calibration, const std::string& 
                                        ? calibration.mps2_per_unit
                                        : *FixedMps2PerUnit(log_units);
 
-  LogScanner scanner(input, options.log);
+  LogScanner scanner(input, options.log, /*parse_gyro=*/calibration.gyroscope.has_value());
   const char decimal_point = scanner.layout().decimal_point;
+  // The gyroscope columns too, when both the calibration and the log have them.
+  std::optional<GyroCorrector> correct_gyro;
+  if (calibration.gyroscope && scanner.layout().has_gyro()) {
+    const GyroUnits log_gyro = options.log.gyro_in_counts ? GyroUnits::kCounts
+                               : options.log.gyro_in_dps  ? GyroUnits::kDps
+                                                          : GyroUnits::kRadps;
+    result.out_gyro_units = options.out_gyro_units.value_or(
+        log_gyro == GyroUnits::kCounts ? GyroUnits::kRadps : log_gyro);
+    correct_gyro.emplace(*calibration.gyroscope, log_gyro, result.out_gyro_units);
+    result.gyro_corrected = true;
+  }
 
   std::vector<RestBlock> blocks;
   BlockSums block;
@@ -227,17 +261,22 @@ ApplyResult ApplyCalibration(const Calibration& calibration, const std::string& 
             block = BlockSums();
           }
         }
-        // Replace the three numbers in the order they appear on the line.
-        std::array<int, 3> order = {0, 1, 2};
-        std::sort(order.begin(), order.end(), [&](int i, int j) {
-          return line.accel_span[i].first < line.accel_span[j].first;
-        });
+        // Replace the numbers (accelerometer, then gyroscope: indices 3-5)
+        // in the order they appear on the line.
+        Eigen::Matrix<double, 6, 1> values;
+        values << a, correct_gyro ? (*correct_gyro)(line.gyro) : Eigen::Vector3d::Zero();
+        auto span = [&](int i) { return i < 3 ? line.accel_span[i] : line.gyro_span[i - 3]; };
+        std::array<int, 6> order = {0, 1, 2, 3, 4, 5};
+        const int count = correct_gyro ? 6 : 3;
+        std::sort(order.begin(), order.begin() + count,
+                  [&](int i, int j) { return span(i).first < span(j).first; });
         std::size_t copied = 0;
-        for (int axis : order) {
-          const auto [begin, end] = line.accel_span[axis];
+        for (int k = 0; k < count; ++k) {
+          const int axis = order[static_cast<std::size_t>(k)];
+          const auto [begin, end] = span(axis);
           buffer.append(line.text.substr(copied, begin - copied));
           char number[32];
-          const auto r = std::to_chars(number, number + sizeof(number), a[axis]);
+          const auto r = std::to_chars(number, number + sizeof(number), values[axis]);
           if (decimal_point != '.') std::replace(number, r.ptr, '.', decimal_point);
           buffer.append(number, r.ptr);
           copied = end;

@@ -20,6 +20,7 @@
 #include "mpcal/json_reader.h"
 #include "mpcal/log_reader.h"
 #include "mpcal/plausible.h"
+#include "gyro_calibration_json.h"
 
 namespace mpcal {
 namespace {
@@ -125,7 +126,9 @@ ErrorModel ReadModel(const JsonReader& r,
 
 std::string CalibrationToJson(const Calibration& c) {
   json j;
-  j["format"] = kCalibrationFormat;
+  // An IMU file when the gyroscope is calibrated too; accelerometer-only
+  // calibrations keep the format every reader already knows.
+  j["format"] = c.gyroscope ? kImuCalibrationFormat : kCalibrationFormat;
   j["model"] = std::string(ToString(c.model_kind));
   j["gravity_mps2"] = Num(c.gravity_mps2, "gravity_mps2");
   j["input"] = {{"units", std::string(ToString(c.input_units))},
@@ -184,6 +187,7 @@ std::string CalibrationToJson(const Calibration& c) {
   }
   j["positions"] = std::move(positions);
   j["warnings"] = c.warnings;
+  if (c.gyroscope) j["gyroscope"] = internal::GyroToJson(*c.gyroscope);
   if (c.provenance) {
     j["provenance"] = {{"mpcal_version", c.provenance->mpcal_version},
                        {"input", c.provenance->input},
@@ -196,7 +200,11 @@ std::string CalibrationToJson(const Calibration& c) {
 Calibration CalibrationFromJson(const std::string& text, const std::string& origin) {
   const JsonReader r(fmt::format("calibration file '{}'", origin), "mpcal calibrate");
   const json j = r.Parse(text);
-  r.ExpectFormat(j, kFormatFamily, kMajorVersion);
+  // mpcal.imu/1 is mpcal.accelerometer/1 plus a `gyroscope` block.
+  const bool imu = j.is_object() && j.contains("format") && j["format"].is_string() &&
+                   j["format"].get<std::string>().starts_with(
+                       std::string(internal::kImuFormatFamily) + "/");
+  r.ExpectFormat(j, imu ? internal::kImuFormatFamily : kFormatFamily, kMajorVersion);
 
   Calibration c;
   const std::string model = r.String(j, "", "model");
@@ -333,6 +341,7 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
     prov.options = r.String(p, "provenance", "options");
     c.provenance = prov;
   }
+  if (imu) c.gyroscope = internal::GyroFromJson(r, r.Field(j, "", "gyroscope"));
   return c;
 }
 

@@ -1120,6 +1120,8 @@ struct ScannerState {
           break;
         default:
           out->gyro[role - kGx] = value;
+          out->gyro_span[role - kGx] = {static_cast<std::uint32_t>(number_begin - line_begin),
+                                        static_cast<std::uint32_t>(after - line_begin)};
           break;
       }
     }
@@ -1594,7 +1596,9 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
   rec.source = s.source;
   const bool gyro = layout.has_gyro();
   const bool index_time = layout.time_column < 0;
-  const double gyro_scale = options.gyro_in_dps ? std::numbers::pi / 180.0 : 1.0;
+  const double gyro_scale =
+      options.gyro_in_dps && !options.gyro_in_counts ? std::numbers::pi / 180.0 : 1.0;
+  if (options.gyro_in_counts) rec.gyro_units = GyroUnits::kCounts;
   const double time_scale = layout.seconds_per_time_unit;
 
   if (s.skipped_bytes > s.begin) {

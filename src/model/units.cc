@@ -1,5 +1,7 @@
 #include "mpcal/units.h"
 
+#include <numbers>
+
 namespace mpcal {
 
 std::string_view ToString(AccelUnits units) {
@@ -28,6 +30,37 @@ std::optional<double> FixedMps2PerUnit(AccelUnits units) {
     case AccelUnits::kG:
       return kStandardGravityMps2;
     case AccelUnits::kCounts:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+std::string_view ToString(GyroUnits units) {
+  switch (units) {
+    case GyroUnits::kRadps:
+      return "rads";
+    case GyroUnits::kDps:
+      return "dps";
+    case GyroUnits::kCounts:
+      return "counts";
+  }
+  return "unknown";
+}
+
+std::optional<GyroUnits> ParseGyroUnits(std::string_view name) {
+  if (name == "rads" || name == "rad/s") return GyroUnits::kRadps;
+  if (name == "dps" || name == "deg/s") return GyroUnits::kDps;
+  if (name == "counts") return GyroUnits::kCounts;
+  return std::nullopt;
+}
+
+std::optional<double> FixedRadpsPerUnit(GyroUnits units) {
+  switch (units) {
+    case GyroUnits::kRadps:
+      return 1.0;
+    case GyroUnits::kDps:
+      return std::numbers::pi / 180.0;
+    case GyroUnits::kCounts:
       return std::nullopt;
   }
   return std::nullopt;

@@ -171,6 +171,11 @@ std::string SimulateStaticOptions::Validate() const {
         std::pair{shake_rotation_deg, "shake_rotation_deg"},
         std::pair{gyro_noise_density_radps_per_sqrt_hz,
                   "gyro_noise_density_radps_per_sqrt_hz"},
+        std::pair{dev.gyro_noise_density_radps_per_sqrt_hz,
+                  "device.gyro_noise_density_radps_per_sqrt_hz"},
+        std::pair{dev.gyro_bias_walk_radps_per_sqrt_s, "device.gyro_bias_walk_radps_per_sqrt_s"},
+        std::pair{gyro_counts_offset, "gyro_counts_offset"},
+        std::pair{gyro_counts_per_radps, "gyro_counts_per_radps"},
         std::pair{counts_offset, "counts_offset"},
         std::pair{counts_per_mps2, "counts_per_mps2"}}) {
     if (std::string e = CheckFinite(value, name); !e.empty()) return e;
@@ -230,8 +235,24 @@ std::string SimulateStaticOptions::Validate() const {
   }
   if (shake_accel_mps2 < 0) return "shake_accel_mps2 must not be negative";
   if (shake_rotation_deg < 0) return "shake_rotation_deg must not be negative";
-  if (gyro_noise_density_radps_per_sqrt_hz < 0) {
-    return "gyro_noise_density_radps_per_sqrt_hz must not be negative";
+  if (dev.gyro_noise_density_radps_per_sqrt_hz < 0) {
+    return "device.gyro_noise_density_radps_per_sqrt_hz must not be negative";
+  }
+  if (dev.gyro_bias_walk_radps_per_sqrt_s < 0) {
+    return "device.gyro_bias_walk_radps_per_sqrt_s must not be negative";
+  }
+  if (!dev.gyro_m.allFinite() || !dev.gyro_bias_radps.allFinite()) {
+    return "device.gyro_m and device.gyro_bias_radps must be finite";
+  }
+  if (std::abs(dev.gyro_m.determinant()) < 1e-3) {
+    return "device.gyro_m must be invertible (a scale near 1 on each axis)";
+  }
+  if (gyro_counts_per_radps <= 0) {
+    return fmt::format("gyro_counts_per_radps must be positive (got {})",
+                       gyro_counts_per_radps);
+  }
+  if (earth_rate_latitude_deg && !(std::abs(*earth_rate_latitude_deg) <= 90.0)) {
+    return "earth_rate_latitude_deg must be between -90 and 90";
   }
   if (counts_per_mps2 <= 0) {
     return fmt::format("counts_per_mps2 must be positive (got {})", counts_per_mps2);
@@ -327,21 +348,41 @@ SimulatedSession SimulateStatic(const SimulateStaticOptions& options,
   const ErrorModel& model = device.truth;
   const double sigma = device.noise_density_mps2_per_sqrt_hz * std::sqrt(rate / 2.0);
   session.noise_std_mps2 = Eigen::Vector3d::Constant(sigma);
-  const double gyro_sigma =
-      options.gyro_noise_density_radps_per_sqrt_hz * std::sqrt(rate / 2.0);
+  const double gyro_density = options.gyro_noise_density_radps_per_sqrt_hz >= 0
+                                  ? options.gyro_noise_density_radps_per_sqrt_hz
+                                  : device.gyro_noise_density_radps_per_sqrt_hz;
+  const double gyro_sigma = gyro_density * std::sqrt(rate / 2.0);
+  const Eigen::Matrix3d gyro_m_inverse = device.gyro_m.inverse();
+  // The bias walks from its value at time 0 (the truth's), one step per sample.
+  const double walk_step = device.gyro_bias_walk_radps_per_sqrt_s / std::sqrt(rate);
+  Eigen::Vector3d gyro_bias = device.gyro_bias_radps;
+  Eigen::Vector3d earth_level = Eigen::Vector3d::Zero();
+  if (options.earth_rate_latitude_deg) {
+    constexpr double kEarthRateRadps = 7.292115e-5;
+    const double lat = *options.earth_rate_latitude_deg * kDegToRad;
+    earth_level = kEarthRateRadps * Eigen::Vector3d(0.0, std::cos(lat), std::sin(lat));
+  }
   Random noise(SplitMix64(options.seed ^ kNoiseStream));
   Random gyro_noise(SplitMix64(options.seed ^ kGyroStream));
   const double res = device.resolution_mps2;
   const double range = device.range_mps2;
   const Eigen::Vector3d up_level(0.0, 0.0, gravity_mps2);
-  const double half_step_s = 0.25 / rate;
+  // A gyroscope's output is its rate low-pass filtered to the output rate:
+  // here the mean rate over the sample period centred on the sample (the
+  // rotation over it, over its length), as a delta-angle output is.
+  const double half_step_s = 0.5 / rate;
 
   Recording& rec = session.recording;
   rec.units = options.units;
   rec.source = "<simulated>";
   rec.time_s.resize(total);
   rec.accel.resize(total);
-  if (options.gyro) rec.gyro_radps.resize(total);
+  if (options.gyro) {
+    rec.gyro_radps.resize(total);
+    rec.gyro_units = options.gyro_units;
+    session.true_rate_radps.resize(total);
+    session.gyro_noise_std_radps = gyro_sigma;
+  }
   for (std::size_t i = 0; i < total; ++i) {
     const double t = static_cast<double>(i) / rate;
     rec.time_s[i] = t;
@@ -374,8 +415,20 @@ SimulatedSession SimulateStatic(const SimulateStaticOptions& options,
       state_at(t - half_step_s, q0, unused);
       state_at(t + half_step_s, q1, unused);
       const Eigen::AngleAxisd delta((q0.conjugate() * q1).normalized());
-      rec.gyro_radps[i] = delta.angle() * delta.axis() / (2.0 * half_step_s) +
+      const Eigen::Vector3d rate_radps = delta.angle() * delta.axis() / (2.0 * half_step_s) +
+                                         q_level_sensor.conjugate() * earth_level;
+      session.true_rate_radps[i] = rate_radps;
+      Eigen::Vector3d g = gyro_m_inverse * rate_radps + gyro_bias +
                           gyro_sigma * gyro_noise.Normal3();
+      if (walk_step > 0) gyro_bias += walk_step * gyro_noise.Normal3();
+      if (options.gyro_units == GyroUnits::kCounts) {
+        g = (Eigen::Vector3d::Constant(options.gyro_counts_offset) +
+             g * options.gyro_counts_per_radps)
+                .array()
+                .round()
+                .matrix();
+      }
+      rec.gyro_radps[i] = g;
     }
   }
 
@@ -402,6 +455,18 @@ SimulatedSession SimulateStatic(const SimulateStaticOptions& options,
   if (options.units == AccelUnits::kCounts)
     step = std::max(step, 1.0 / options.counts_per_mps2);
   session.quantisation_step_mps2 = step;
+  if (options.gyro) {
+    GyroCalibration gyro;
+    gyro.input_units = options.gyro_units;
+    gyro.m = device.gyro_m;
+    gyro.bias_radps = device.gyro_bias_radps;
+    if (options.gyro_units == GyroUnits::kCounts) {
+      gyro.radps_per_unit = 1.0 / options.gyro_counts_per_radps;
+      gyro.bias_radps +=
+          Eigen::Vector3d::Constant(options.gyro_counts_offset / options.gyro_counts_per_radps);
+    }
+    truth.gyroscope = gyro;
+  }
   Provenance provenance;
   provenance.input = "<simulated>";
   provenance.options = fmt::format(

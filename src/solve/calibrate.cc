@@ -63,6 +63,7 @@ std::string CalibrateOptions::Validate() const {
   }
   if (std::string p = detect.Validate(); !p.empty()) return "detect: " + p;
   if (std::string p = solve.Validate(); !p.empty()) return "solve: " + p;
+  if (std::string p = gyro.Validate(); !p.empty()) return "gyro: " + p;
   return "";
 }
 
@@ -169,6 +170,13 @@ CalibrateResult CalibrateRecording(const Recording& recording,
     c.positions.push_back(s);
   }
   c.warnings = result.warnings;
+
+  // The gyroscope from the turns between the same positions, with the
+  // gravity directions of the accelerometer just calibrated.
+  if (options.calibrate_gyroscope && !recording.gyro_radps.empty() && result.solve.converged()) {
+    result.gyro = CalibrateGyroscope(recording, intervals, c, options.gyro);
+    if (result.gyro->converged()) c.gyroscope = result.gyro->calibration;
+  }
   return result;
 }
 

@@ -1,0 +1,27 @@
+// The gyroscope as people read it, beside the accelerometer's table: M as
+// scale-factor errors (ppm) and misalignments (mrad) ±1σ, the bias (deg/s)
+// and its change over the session, the turn residuals before and after;
+// and the session's gyroscope findings in words. Shared by `calibrate` and
+// `demo`.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mpcal/calibrate.h"
+#include "mpcal/gyro.h"
+#include "mpcal/gyro_calibration.h"
+
+namespace mpcal::cli {
+
+/// An optional column beside the estimate (the truth, say), as a calibration.
+std::string FormatGyroTable(const GyroCalibration& gyro, const GyroCalibration* extra = nullptr,
+                            const std::string& extra_title = "");
+
+/// Turns, convergence and the RMS tilt before/after, a few lines.
+std::string FormatGyroSummary(const GyroResult& result);
+
+/// Each finding as a sentence naming the entries of M and the turns to add.
+std::vector<std::string> GyroFindingMessages(const GyroResult& result);
+
+}  // namespace mpcal::cli

@@ -1,0 +1,199 @@
+#include "turn_problem.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
+
+#include "mpcal/error.h"
+#include "rotation.h"
+
+namespace mpcal::internal {
+namespace {
+
+Eigen::Matrix3d Hat(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d k;
+  k << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return k;
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+struct PositionGyro {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  double std = 0.0;  // RMS over the axes of the per-axis sample std
+  std::size_t samples = 0;
+  double centre_s = 0.0;
+};
+
+PositionGyro GyroAt(const Recording& rec, const StaticInterval& in) {
+  PositionGyro p;
+  const std::size_t n = in.end - in.begin;
+  // Two passes for the scatter: raw counts near 32768 would cancel in a
+  // one-pass sum of squares.
+  for (std::size_t i = in.begin; i < in.end; ++i) p.mean += rec.gyro_radps[i];
+  p.mean /= static_cast<double>(n);
+  Eigen::Vector3d sq = Eigen::Vector3d::Zero();
+  for (std::size_t i = in.begin; i < in.end; ++i) {
+    sq += (rec.gyro_radps[i] - p.mean).cwiseAbs2();
+  }
+  p.std = n > 1 ? std::sqrt(sq.sum() / 3.0 / static_cast<double>(n - 1)) : 0.0;
+  p.samples = n;
+  p.centre_s = 0.5 * (rec.time_s[in.begin] + rec.time_s[in.end - 1]);
+  return p;
+}
+
+// The direction over `window_s` at the end (or start) of a position, and
+// the variance of each of its tangent components added to `*variance`.
+Eigen::Vector3d EdgeDirection(const Recording& rec, const StaticInterval& in,
+                              const Calibration& accel, double window_s, bool at_end,
+                              double* variance) {
+  const double edge_s = at_end ? rec.time_s[in.end - 1] - window_s : rec.time_s[in.begin] + window_s;
+  std::size_t first = in.begin;
+  std::size_t last = in.end;  // one past
+  if (at_end) {
+    while (first + 1 < last && rec.time_s[first] < edge_s) ++first;
+  } else {
+    while (last - 1 > first && rec.time_s[last - 1] > edge_s) --last;
+  }
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (std::size_t i = first; i < last; ++i) mean += rec.accel[i];
+  const double n = static_cast<double>(last - first);
+  mean /= n;
+  const Eigen::Vector3d std_mps2 = in.std * accel.mps2_per_unit;
+  *variance += std_mps2.squaredNorm() / 3.0 / n / (accel.gravity_mps2 * accel.gravity_mps2);
+  return accel.Correct(mean).normalized();
+}
+
+}  // namespace
+
+double TurnData::Sigma(double radps_per_unit) const {
+  return std::sqrt(direction_variance_rad2 +
+                   radps_per_unit * radps_per_unit * gyro_variance_raw2s2);
+}
+
+TurnProblem BuildTurnProblem(const Recording& rec, std::span<const StaticInterval> intervals,
+                             const Calibration& accel, double direction_window_s) {
+  if (rec.gyro_radps.size() != rec.size() || rec.empty()) {
+    throw Error(fmt::format("{}: the log has no gyroscope readings", rec.source));
+  }
+  if (intervals.size() < 2) {
+    throw Error(fmt::format("{}: {} static position(s) give no turn for the gyroscope",
+                            rec.source, intervals.size()));
+  }
+  for (std::size_t k = 0; k < intervals.size(); ++k) {
+    const StaticInterval& in = intervals[k];
+    if (in.begin >= in.end || in.end > rec.size() ||
+        (k > 0 && in.begin < intervals[k - 1].end)) {
+      throw Error(fmt::format("{}: static position {} lies outside the recording or "
+                              "overlaps the one before",
+                              rec.source, k + 1));
+    }
+  }
+
+  TurnProblem problem;
+  std::vector<PositionGyro> gyro;
+  std::vector<Eigen::Vector3d> directions;
+  std::vector<double> direction_variance;
+  std::vector<double> stds;
+  for (const StaticInterval& in : intervals) {
+    gyro.push_back(GyroAt(rec, in));
+    stds.push_back(gyro.back().std);
+    problem.bias_raw.push_back({gyro.back().centre_s, gyro.back().mean});
+    directions.push_back(accel.Correct(in.mean).normalized());
+    // Each tangent component of the mean direction: the accelerometer's
+    // noise of the mean over g.
+    const Eigen::Vector3d std_mps2 = in.std * accel.mps2_per_unit;
+    const double n = static_cast<double>(std::max<std::size_t>(in.samples(), 1));
+    direction_variance.push_back(std_mps2.squaredNorm() / 3.0 / n /
+                                 (accel.gravity_mps2 * accel.gravity_mps2));
+  }
+  // The typical scatter at rest is the white noise; a position far quieter
+  // is quantisation of a sensor that does not move, not a better gyroscope.
+  problem.noise_std_raw = Median(stds);
+  std::vector<double> periods;
+  for (std::size_t i = 1; i < rec.size(); i += std::max<std::size_t>(1, rec.size() / 1000)) {
+    periods.push_back(rec.time_s[i] - rec.time_s[i - 1]);
+  }
+  problem.sample_period_s = Median(periods);
+
+  const double var_sample = problem.noise_std_raw * problem.noise_std_raw;
+  for (std::size_t k = 0; k + 1 < intervals.size(); ++k) {
+    TurnData t;
+    t.from_position = k;
+    t.begin = intervals[k].end - 1;
+    t.end = intervals[k + 1].begin;
+    t.start_s = rec.time_s[t.begin];
+    t.end_s = rec.time_s[t.end];
+    if (direction_window_s > 0.0) {
+      t.u_from = EdgeDirection(rec, intervals[k], accel, direction_window_s, true,
+                               &t.direction_variance_rad2);
+      t.u_to = EdgeDirection(rec, intervals[k + 1], accel, direction_window_s, false,
+                             &t.direction_variance_rad2);
+    } else {
+      t.u_from = directions[k];
+      t.u_to = directions[k + 1];
+      t.direction_variance_rad2 = direction_variance[k] + direction_variance[k + 1];
+    }
+    const PositionGyro& a = gyro[k];
+    const PositionGyro& b = gyro[k + 1];
+    const double span_s = std::max(b.centre_s - a.centre_s, 1e-9);
+    auto bias_at = [&](double time_s, double* lambda) {
+      *lambda = std::clamp((time_s - a.centre_s) / span_s, 0.0, 1.0);
+      return ((1.0 - *lambda) * a.mean + *lambda * b.mean).eval();
+    };
+    t.steps.reserve(t.end - t.begin);
+    double lambda_sum = 0.0;
+    double l0 = 0.0;
+    Eigen::Vector3d w0 = rec.gyro_radps[t.begin] - bias_at(rec.time_s[t.begin], &l0);
+    for (std::size_t i = t.begin; i < t.end; ++i) {
+      double l1 = 0.0;
+      const Eigen::Vector3d w1 = rec.gyro_radps[i + 1] - bias_at(rec.time_s[i + 1], &l1);
+      const double dt = rec.time_s[i + 1] - rec.time_s[i];
+      t.steps.push_back({w0 * dt, w1 * dt});
+      lambda_sum += 0.5 * (l0 + l1);
+      w0 = w1;
+      l0 = l1;
+    }
+    const Eigen::Vector3d e1 = t.u_to.unitOrthogonal();
+    t.basis_to.col(0) = e1;
+    t.basis_to.col(1) = t.u_to.cross(e1);
+
+    const double duration = t.end_s - t.start_s;
+    const double lambda = t.steps.empty() ? 0.5 : lambda_sum / t.steps.size();
+    // White noise integrated over the turn (angle random walk), and the
+    // error of the two measured biases carried through the interpolation.
+    const double arw = var_sample * problem.sample_period_s * duration;
+    const double bias = duration * duration *
+                        ((1.0 - lambda) * (1.0 - lambda) * var_sample / a.samples +
+                         lambda * lambda * var_sample / b.samples);
+    t.gyro_variance_raw2s2 = arw + bias;
+    problem.turns.push_back(std::move(t));
+  }
+  return problem;
+}
+
+Eigen::Matrix3d TurnResidual(const TurnData& turn, const Eigen::Matrix3d& m,
+                             Eigen::Vector2d* residual, Eigen::Matrix<double, 2, 9>* jacobian) {
+  Eigen::Matrix<double, 3, 9> d_theta;
+  const Eigen::Matrix3d r =
+      RotationOverTurn(m, turn.steps, jacobian != nullptr ? &d_theta : nullptr);
+  const Eigen::Vector3d carried = r.transpose() * turn.u_from;
+  if (residual != nullptr) *residual = turn.basis_to.transpose() * carried;
+  // R' = R exp([δθ]×) carries u to exp(−[δθ]×) Rᵀu ≈ Rᵀu + [Rᵀu]× δθ.
+  if (jacobian != nullptr) *jacobian = turn.basis_to.transpose() * Hat(carried) * d_theta;
+  return r;
+}
+
+double TurnTilt(const TurnData& turn, const Eigen::Matrix3d& rotation) {
+  const Eigen::Vector3d carried = rotation.transpose() * turn.u_from;
+  return std::atan2(carried.cross(turn.u_to).norm(), carried.dot(turn.u_to));
+}
+
+}  // namespace mpcal::internal

@@ -1,0 +1,71 @@
+// The data of the gyroscope problem, from a recording, its static positions
+// and the accelerometer's calibration: per position the gravity direction
+// and the gyroscope's mean (the bias) and scatter; per turn the bias-free
+// angle increments and the variance of its residual.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mpcal/calibration.h"
+#include "mpcal/detect.h"
+#include "mpcal/gyro_calibration.h"
+#include "mpcal/recording.h"
+#include "rotation.h"
+
+namespace mpcal::internal {
+
+struct TurnData {
+  std::size_t from_position = 0;
+  std::size_t begin = 0;  // first and last sample integrated (inclusive)
+  std::size_t end = 0;
+  double start_s = 0.0;
+  double end_s = 0.0;
+  /// Each sample interval: the bias-free readings at its two ends times its
+  /// length (raw units × s).
+  std::vector<TurnStep> steps;
+  /// Unit gravity directions (body frame) before and after, and an
+  /// orthonormal basis of the plane perpendicular to the one after.
+  Eigen::Vector3d u_from = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d u_to = Eigen::Vector3d::UnitZ();
+  Eigen::Matrix<double, 3, 2> basis_to = Eigen::Matrix<double, 3, 2>::Zero();
+  /// Variance of each residual component (rad²): the two directions' part,
+  /// and the gyroscope's part (white noise integrated over the turn plus the
+  /// interpolated bias) in raw units² × s², to be multiplied by the square of
+  /// the nominal scale.
+  double direction_variance_rad2 = 0.0;
+  double gyro_variance_raw2s2 = 0.0;
+
+  double Sigma(double radps_per_unit) const;
+};
+
+struct TurnProblem {
+  std::vector<TurnData> turns;
+  /// Mean gyroscope reading at each position (raw units) and its centre.
+  std::vector<GyroBiasSample> bias_raw;
+  /// Typical per-sample white noise of the gyroscope at rest (raw units),
+  /// and the median sample period (s).
+  double noise_std_raw = 0.0;
+  double sample_period_s = 0.0;
+};
+
+/// \throws mpcal::Error when the recording has no gyroscope, fewer than two
+///   positions are given, or a position lies outside the recording.
+/// `direction_window_s` as GyroOptions::direction_window_s.
+TurnProblem BuildTurnProblem(const Recording& recording,
+                             std::span<const StaticInterval> intervals,
+                             const Calibration& accel, double direction_window_s);
+
+/// Residual of one turn (unwhitened, rad: the tilt components in the basis
+/// at u_to) at the effective matrix `m` applied to raw increments, and its
+/// 2 × 9 Jacobian when asked. Returns the rotation over the turn.
+Eigen::Matrix3d TurnResidual(const TurnData& turn, const Eigen::Matrix3d& m,
+                             Eigen::Vector2d* residual, Eigen::Matrix<double, 2, 9>* jacobian);
+
+/// Angle (rad) between the carried direction Rᵀ u_from and u_to.
+double TurnTilt(const TurnData& turn, const Eigen::Matrix3d& rotation);
+
+}  // namespace mpcal::internal

@@ -1,0 +1,72 @@
+// The anchor of issue 17: imu_tk's Xsens recording, accelerometer and
+// gyroscope in two files of raw counts merged by row. imu_tk's own
+// parameters carry gravity over the 37 turns to 0.57° RMS (0.34° with a bias
+// measured at every position); an independent general-M fit reaches 0.31°.
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "mpcal/calibrate.h"
+#include "mpcal/error.h"
+#include "mpcal/gyro_log.h"
+#include "mpcal/log_reader.h"
+#include "test_util.h"
+
+namespace mpcal {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+Recording XsensImu() {
+  LogOptions options;
+  options.units = AccelUnits::kCounts;
+  Recording r = ReadLog(testing::RealDataPath("xsens-multiposition/xsens_acc.mat"), options);
+  const Recording g =
+      ReadLog(testing::RealDataPath("xsens-multiposition/xsens_gyro.mat"), options);
+  MergeGyroLog(r, g, GyroUnits::kCounts);
+  return r;
+}
+
+TEST(XsensGyroscope, CarriesGravityOverTheTurnsBetterThanImuTk) {
+  CalibrateOptions options;
+  options.solve.gravity_mps2 = 9.81744;
+  const CalibrateResult r = CalibrateRecording(XsensImu(), options);
+  ASSERT_TRUE(r.gyro.has_value());
+  ASSERT_TRUE(r.gyro->converged()) << r.gyro->message;
+  ASSERT_TRUE(r.calibration.gyroscope.has_value());
+  const GyroCalibration& g = *r.calibration.gyroscope;
+  EXPECT_EQ(g.fit->turns, 37);
+  // imu_tk: 0.57°; the issue's target 0.33° (see the README for where this
+  // stands).
+  EXPECT_LE(g.fit->residual_rms_after_rad, 0.40 * kDeg);
+  EXPECT_GT(g.fit->residual_rms_before_rad, 3.0 * g.fit->residual_rms_after_rad);
+  // imu_tk's K: about 2.09e-4 rad/s per count on every axis, found from the
+  // turns alone; its zero about 32768 counts.
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(g.m(i, i) * g.radps_per_unit, 2.095e-4, 0.02 * 2.095e-4) << "axis " << i;
+    EXPECT_NEAR(g.bias_radps[i] / g.radps_per_unit, 32600.0, 300.0) << "axis " << i;
+  }
+  // Misalignment within imu_tk's 0.06 rad of it, each 1σ well below that.
+  EXPECT_LT(g.MStd().maxCoeff(), 0.01);
+}
+
+TEST(XsensGyroscope, RowsOfTheTwoFilesMustMatch) {
+  LogOptions options;
+  options.units = AccelUnits::kCounts;
+  Recording r = ReadLog(testing::RealDataPath("xsens-multiposition/xsens_acc.mat"), options);
+  Recording g = ReadLog(testing::RealDataPath("xsens-multiposition/xsens_gyro.mat"), options);
+  Recording shifted = g;
+  shifted.time_s[100] += 0.005;
+  EXPECT_THROW(MergeGyroLog(r, shifted, GyroUnits::kCounts), Error);
+  Recording shorter = g;
+  shorter.time_s.pop_back();
+  shorter.accel.pop_back();
+  EXPECT_THROW(MergeGyroLog(r, shorter, GyroUnits::kCounts), Error);
+  MergeGyroLog(r, g, GyroUnits::kCounts);
+  EXPECT_EQ(r.gyro_units, GyroUnits::kCounts);
+  EXPECT_THROW(MergeGyroLog(r, g, GyroUnits::kCounts), Error);
+}
+
+}  // namespace
+}  // namespace mpcal
