@@ -99,6 +99,10 @@ struct SimulateStaticOptions {
   /// Also simulate gyroscope readings (rad/s): the true angular rate plus
   /// white noise of this density (rad/s/√Hz). Off by default.
   bool gyro = false;
+  /// A bias drifting linearly over the session (m/s² per s, per axis): the
+  /// device's bias is reached at the last sample, as a calibration file
+  /// states a drifting bias (calibration.h, BiasDrift).
+  Eigen::Vector3d bias_drift_mps2_per_s = Eigen::Vector3d::Zero();
   double gyro_noise_density_radps_per_sqrt_hz = 1e-3;
   /// Units written: m/s²; g (readings divided by 9.80665); or counts, an ADC
   /// reading round(counts_offset + reading_mps2 × counts_per_mps2).
