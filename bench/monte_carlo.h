@@ -27,6 +27,9 @@ struct Envelope {
   double min_rate_hz = 50.0;
   double max_rate_hz = 200.0;
   double noise_density_mps2_per_sqrt_hz = 0.002;
+  /// A bias drift drawn per axis within ± this (m/s² per s); 0: none (and
+  /// no random draw, so that sessions without drift stay as they were).
+  double max_bias_drift_mps2_per_s = 0.0;
 };
 
 /// A session drawn from the envelope, in g or m/s² at random.
@@ -51,6 +54,9 @@ inline SimulateStaticOptions DrawSession(const Envelope& e, std::mt19937_64& rng
   o.rate_hz = e.min_rate_hz + (e.max_rate_hz - e.min_rate_hz) * 0.5 * (1.0 + u(rng));
   o.units = u(rng) > 0.0 ? AccelUnits::kG : AccelUnits::kMps2;
   o.seed = rng();
+  if (e.max_bias_drift_mps2_per_s > 0.0) {
+    for (int i = 0; i < 3; ++i) o.bias_drift_mps2_per_s[i] = e.max_bias_drift_mps2_per_s * u(rng);
+  }
   return o;
 }
 
@@ -60,6 +66,8 @@ inline SimulateStaticOptions DrawSession(const Envelope& e, std::mt19937_64& rng
 struct Outcome {
   Eigen::Matrix<double, 9, 1> error_over_bound;
   Eigen::Matrix<double, 9, 1> reported_over_bound;
+  /// Whether the calibration chose a drifting bias.
+  bool drift_chosen = false;
 };
 
 inline std::optional<Outcome> RunSession(const SimulateStaticOptions& options) {
@@ -71,7 +79,8 @@ inline std::optional<Outcome> RunSession(const SimulateStaticOptions& options) {
     if (!r.solve.converged()) return std::nullopt;
     const Eigen::Matrix<double, 9, 1> bound = SimulatedBoundSigma(s, options.initial_rest_s);
     return Outcome{(ToVector(r.calibration.model) - ToVector(s.truth.model)).cwiseQuotient(bound),
-                   ToVector(*r.calibration.std).cwiseQuotient(bound)};
+                   ToVector(*r.calibration.std).cwiseQuotient(bound),
+                   r.calibration.bias_drift.has_value()};
   } catch (const Error&) {
     return std::nullopt;
   }

@@ -30,6 +30,43 @@ constexpr Row kRows[9] = {
     {"non-orthogonality zy", "mrad", 1e3},
 };
 
+// The short names of the split-half lines, in the packed order.
+constexpr const char* kShortNames[9] = {"bias x", "bias y", "bias z", "scale x", "scale y",
+                                        "scale z", "θyz", "θzx", "θzy"};
+
+// One line per split: the halves' positions, the RMS z and the z of each
+// parameter, and the verdict of the chi-square test.
+std::string FormatSplitHalf(const SplitHalfSummary& check) {
+  std::string out;
+  for (const SplitHalfComparison& c : check.comparisons) {
+    const char* kind = c.kind == SplitKind::kByTime ? "by time" : "alternate positions";
+    if (!c.determined) {
+      out += fmt::format("split-half ({}, {} + {} positions): not possible, a half does not "
+                         "determine every parameter\n",
+                         kind, c.positions_first, c.positions_second);
+      continue;
+    }
+    out += fmt::format("split-half ({}, {} + {} positions): RMS z {:.2f} (honest 1σ: 1 ± {:.2f}); ",
+                       kind, c.positions_first, c.positions_second, c.rms_z,
+                       1.0 / std::sqrt(2.0 * c.dof));
+    out += c.disagree ? fmt::format("the halves DISAGREE beyond chance (chi-square p = {:.2g} < "
+                                    "{:g})\n",
+                                    c.p_value, check.significance)
+                      : fmt::format("consistent (chi-square p = {:.2g})\n", c.p_value);
+    out += "  z:";
+    for (std::size_t i = 0; i < c.z.size() && i < 9; ++i) {
+      out += fmt::format(" {} {:+.2f}{}", kShortNames[i], c.z[i], i + 1 < c.z.size() ? "," : "");
+    }
+    out += "\n";
+  }
+  if (check.widening > 1.0) {
+    out += fmt::format("every 1σ above is widened by {:.2f} (sqrt(chi-square/dof) of the halves "
+                       "that disagree)\n",
+                       check.widening);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string FormatParameterTable(const Calibration& calibration,
@@ -54,6 +91,18 @@ std::string FormatParameterTable(const Calibration& calibration,
                    : fmt::format(" {:>10.5f}", value[i]);
     }
     out += "\n";
+  }
+  if (calibration.bias_drift) {
+    const BiasDrift& d = *calibration.bias_drift;
+    // mg per minute: the unit a warm-up drift reads naturally in.
+    const double per = 60.0 * 1e3 / kStandardGravityMps2;
+    out += fmt::format(
+        "bias drift x, y, z: {:+.4f} ± {:.4f}, {:+.4f} ± {:.4f}, {:+.4f} ± {:.4f} mg/min "
+        "(F test p = {:.2g}); the bias above is the bias at the end of the session, "
+        "t = {:.1f} s\n",
+        d.mps2_per_s.x() * per, d.std_mps2_per_s.x() * per, d.mps2_per_s.y() * per,
+        d.std_mps2_per_s.y() * per, d.mps2_per_s.z() * per, d.std_mps2_per_s.z() * per,
+        d.p_value, d.reference_time_s);
   }
   if (calibration.input_units == AccelUnits::kCounts) {
     out += fmt::format("readings in counts, scaled by the nominal {:.6g} m/s2 per count "
@@ -95,6 +144,11 @@ std::string FormatFitSummary(const CalibrateResult& result) {
                        n->x(), n->y(), n->z(), noise_units::MicroGPerRtHz(n->x()),
                        noise_units::MicroGPerRtHz(n->y()), noise_units::MicroGPerRtHz(n->z()));
   }
+  if (s.bias_drift_p_value && !s.bias_drift) {
+    out += fmt::format("bias drift: not significant (F test p = {:.2g}); the bias is constant\n",
+                       *s.bias_drift_p_value);
+  }
+  if (s.split_half) out += FormatSplitHalf(*s.split_half);
   if (!s.converged()) out += fmt::format("solver: {}\n", s.message);
   return out;
 }

@@ -38,6 +38,7 @@ struct SimulateStaticFlags {
   double counts_offset = 32768.0;
   std::optional<double> noise_density;
   std::vector<double> turn_on_spread_g;
+  std::vector<double> bias_drift_mps2_per_s;
   double shake_accel_mps2 = 1.5;
   double shake_rotation_deg = 3.0;
   bool gyro = false;
@@ -94,6 +95,15 @@ SimulateStaticOptions ToOptions(const SimulateStaticFlags& f) {
   } else if (!f.turn_on_spread_g.empty()) {
     throw Error(fmt::format("--turn-on-spread takes one value or three (x,y,z), got {}",
                             f.turn_on_spread_g.size()));
+  }
+  if (f.bias_drift_mps2_per_s.size() == 1) {
+    o.bias_drift_mps2_per_s.setConstant(f.bias_drift_mps2_per_s[0]);
+  } else if (f.bias_drift_mps2_per_s.size() == 3) {
+    o.bias_drift_mps2_per_s = Eigen::Vector3d(
+        f.bias_drift_mps2_per_s[0], f.bias_drift_mps2_per_s[1], f.bias_drift_mps2_per_s[2]);
+  } else if (!f.bias_drift_mps2_per_s.empty()) {
+    throw Error(fmt::format("--bias-drift takes one value or three (x,y,z), got {}",
+                            f.bias_drift_mps2_per_s.size()));
   }
   ThrowIfInvalid(o.Validate(), "simulate static");
   return o;
@@ -313,6 +323,12 @@ void AddSimulateStaticCommand(CLI::App& simulate) {
                   "default: the paper's spread over its three trials")
       ->delimiter(',')
       ->group("Session");
+  app->add_option("--bias-drift",
+                  f->bias_drift_mps2_per_s,
+                  "A bias drifting linearly over the session (m/s2 per second), one value or "
+                  "x,y,z, reaching the device's bias at the last sample (a warm-up)")
+      ->delimiter(',')
+      ->group("Session");
   app->add_option("--rate", f->rate_hz, "Sample rate (Hz); default the device's")
       ->check(PositiveNumber)
       ->group("Sensor");
@@ -376,7 +392,10 @@ void AddSimulateStaticCommand(CLI::App& simulate) {
       "  mpcal simulate static --preset colibri --units g --trials 3 -o s.csv --truth "
       "t.json\n"
       "    (writes s_1.csv s_2.csv s_3.csv and t_1.json t_2.json t_3.json)\n"
-      "  mpcal simulate static --preset colibri --gyro -o imu.csv --truth imu_truth.json");
+      "  mpcal simulate static --preset colibri --gyro -o imu.csv --truth imu_truth.json\n"
+      "  mpcal simulate static --preset mti-g --bias-drift 2e-4 -o warm.csv --truth "
+      "warm.json\n"
+      "    (a bias warming up by 2e-4 m/s2 per second; calibrate fits the drift)");
   app->callback([f] { Run(*f); });
 }
 

@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -41,6 +42,61 @@ struct Provenance {
   std::string options;  ///< the options that mattered, as a command line
 };
 
+/// A bias that drifts linearly in time over the calibration session (a
+/// sensor warming up after power-on): b(t) = bias_mps2 + d·(t − t_ref). The
+/// calibration's bias_mps2 is the bias at t_ref, the end of the session, so
+/// that a correction that ignores the drift uses the latest bias.
+struct BiasDrift {
+  /// d (m/s² per second) and its 1σ.
+  Eigen::Vector3d mps2_per_s = Eigen::Vector3d::Zero();
+  Eigen::Vector3d std_mps2_per_s = Eigen::Vector3d::Zero();
+  /// t_ref in the calibration log's own clock (s).
+  double reference_time_s = 0.0;
+  /// P-value of the F test that chose the drift over a constant bias.
+  double p_value = 0.0;
+};
+
+/// How the positions were split in two for the split-half check.
+enum class SplitKind { kByTime, kInterleaved };
+/// "by_time", "interleaved": the keys in the file.
+inline std::string_view ToString(SplitKind kind) {
+  return kind == SplitKind::kByTime ? "by_time" : "interleaved";
+}
+
+/// One split of the used positions into two halves, each calibrated alone,
+/// and how far the two estimates differ in units of their combined 1σ:
+/// z = (p₁ − p₂)/√(σ₁² + σ₂²), standard normal when the 1σ are honest
+/// (METHOD.md §9).
+struct SplitHalfComparison {
+  SplitKind kind = SplitKind::kByTime;
+  int positions_first = 0;
+  int positions_second = 0;
+  /// False when a half does not determine every parameter (or its fit
+  /// failed): then there is no z.
+  bool determined = false;
+  /// Per estimated parameter, in the packed order of kParameterNames.
+  std::vector<double> z;
+  /// √(mean z²): about 1 ± 0.24 for 9 honest parameters.
+  double rms_z = 0.0;
+  /// dᵀ(C₁ + C₂)⁻¹d of the difference d with the halves' covariances, χ²
+  /// with one degree of freedom per parameter when the 1σ are honest, and
+  /// its upper-tail probability.
+  double chi2 = 0.0;
+  int dof = 0;
+  double p_value = 1.0;
+  /// p_value below the significance: the halves disagree beyond chance.
+  bool disagree = false;
+};
+
+/// The split-half check of one calibration (`"fit.split_half"`).
+struct SplitHalfSummary {
+  double significance = 0.01;
+  std::vector<SplitHalfComparison> comparisons;
+  /// Factor every 1σ was multiplied by: 1, or √(χ²/dof) of the worst split
+  /// whose halves disagree beyond chance.
+  double widening = 1.0;
+};
+
 /// How the fit went, as recorded in the file (`"fit"`).
 struct FitSummary {
   int positions = 0;
@@ -59,6 +115,8 @@ struct FitSummary {
   std::optional<double> position_scatter_mps2;
   /// Leave-one-position-out RMS of predicted residuals (m/s²).
   std::optional<double> cross_validation_rms_mps2;
+  /// The two halves of the session calibrated alone and compared.
+  std::optional<SplitHalfSummary> split_half;
 };
 
 struct Calibration {
@@ -87,6 +145,8 @@ struct Calibration {
   ErrorModel model;
   /// 1σ of each parameter (same layout); nullopt when not estimated (truth).
   std::optional<ErrorModel> std;
+  /// Present when the session showed a significant bias drift.
+  std::optional<BiasDrift> bias_drift;
   std::optional<FitSummary> fit;
   /// Per-position detail; empty for a truth file.
   std::vector<PositionSummary> positions;

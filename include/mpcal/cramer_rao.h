@@ -20,6 +20,9 @@ struct BoundPosition {
   Eigen::Vector3d direction;        ///< unit vector of gravity reaction (sensor frame, true)
   Eigen::Vector3d noise_std_mps2;   ///< per-sample white-noise σ of each axis
   std::size_t samples = 0;
+  /// The middle of the position from the drift's reference time (s); only
+  /// CramerRaoBoundWithDrift uses it.
+  double time_from_reference_s = 0.0;
 };
 
 /// Covariance bound of the packed parameters (order of kParameterNames); for
@@ -30,5 +33,12 @@ Eigen::Matrix<double, 9, 9> CramerRaoBound(const ErrorModel& truth,
                                            std::span<const BoundPosition> positions,
                                            double gravity_mps2,
                                            ModelKind model = ModelKind::kShinElSheimy9);
+
+/// The same bound when the bias drifts linearly in time, b(t) = b + d·(t −
+/// t_ref), and the three rates d are estimated too: the bound of the packed
+/// parameters (the bias at t_ref) with d eliminated.
+Eigen::Matrix<double, 9, 9> CramerRaoBoundWithDrift(
+    const ErrorModel& truth, std::span<const BoundPosition> positions, double gravity_mps2,
+    ModelKind model = ModelKind::kShinElSheimy9);
 
 }  // namespace mpcal

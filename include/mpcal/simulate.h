@@ -120,6 +120,10 @@ struct SimulateStaticOptions {
   GyroUnits gyro_units = GyroUnits::kRadps;
   double gyro_counts_offset = 32768.0;
   double gyro_counts_per_radps = 4780.0;
+  /// A bias drifting linearly over the session (m/s² per s, per axis): the
+  /// device's bias is reached at the last sample, as a calibration file
+  /// states a drifting bias (calibration.h, BiasDrift).
+  Eigen::Vector3d bias_drift_mps2_per_s = Eigen::Vector3d::Zero();
   /// Units written: m/s²; g (readings divided by 9.80665); or counts, an ADC
   /// reading round(counts_offset + reading_mps2 × counts_per_mps2).
   AccelUnits units = AccelUnits::kMps2;

@@ -47,6 +47,23 @@ struct SolveOptions {
   double outlier_threshold = 5.0;
   /// Leave-one-position-out cross-validation (K extra small fits).
   bool cross_validate = true;
+  /// The split-half check (four extra fits): the used positions split by
+  /// time and alternately, each half calibrated alone, and every 1σ widened
+  /// when two halves disagree beyond chance at `split_half_significance`.
+  bool split_half_check = true;
+  double split_half_significance = 0.01;
+  /// A bias drifting linearly over the session, b(t) = b + d·(t − t_ref),
+  /// three more parameters: fitted besides the constant bias and chosen
+  /// when an F test of the improvement rejects a constant bias at
+  /// `bias_drift_significance`. Off: the bias is constant.
+  bool consider_bias_drift = true;
+  double bias_drift_significance = 0.01;
+  /// Fit the drift whatever the test says (the split-half check fits the
+  /// halves of a session whose whole showed a drift with it).
+  bool force_bias_drift = false;
+  /// t_ref in the positions' clock (s): a drifting bias is reported as the
+  /// bias at this time. Unset: the end of the last position.
+  std::optional<double> bias_reference_time_s;
   /// Offset of the readings before calibration (m/s²), for the "before"
   /// residuals only: zero for m/s² and g; for raw counts the ADC's zero
   /// found from the positions, so that "before" means nominal scale and
@@ -93,6 +110,14 @@ struct SolveResult {
   /// 1σ): hand tremor, non-white noise or model error; it enters every
   /// position's weight. Zero when the noise explains the residuals.
   double position_scatter_mps2 = 0.0;
+  /// The split-half check; nullopt when it is off. The covariance and std
+  /// above already carry its widening.
+  std::optional<SplitHalfSummary> split_half;
+  /// The drift of the bias when the F test chose it (`estimate` then holds
+  /// the bias at its reference time), and the test's p-value whenever the
+  /// test was made (enough positions for 12 parameters).
+  std::optional<BiasDrift> bias_drift;
+  std::optional<double> bias_drift_p_value;
   /// χ² of the whitened residuals over degrees of freedom.
   double variance_factor = 0.0;
   double final_cost = 0.0;

@@ -60,7 +60,67 @@ void PutModel(json& j, const ErrorModel& m, const std::string& prefix) {
       {"zy", Num(m.theta_zy_rad, prefix + "non_orthogonality_rad.zy")}};
 }
 
+// `"fit.split_half"`: one object per split, keyed by its kind.
+json SplitHalfJson(const SplitHalfSummary& summary) {
+  json j = {{"significance", Num(summary.significance, "fit.split_half.significance")},
+            {"widening", Num(summary.widening, "fit.split_half.widening")}};
+  for (const SplitHalfComparison& c : summary.comparisons) {
+    const std::string at = fmt::format("fit.split_half.{}.", ToString(c.kind));
+    json q = {{"positions", json::array({c.positions_first, c.positions_second})},
+              {"determined", c.determined}};
+    if (c.determined) {
+      json z = json::array();
+      for (double v : c.z) z.push_back(Num(v, at + "z"));
+      q["z"] = std::move(z);
+      q["rms_z"] = Num(c.rms_z, at + "rms_z");
+      q["chi2"] = Num(c.chi2, at + "chi2");
+      q["dof"] = c.dof;
+      q["p_value"] = Num(c.p_value, at + "p_value");
+      q["disagree"] = c.disagree;
+    }
+    j[std::string(ToString(c.kind))] = std::move(q);
+  }
+  return j;
+}
+
 // ----- reading -----
+
+SplitHalfSummary ReadSplitHalf(const JsonReader& r, const JsonReader::json& f) {
+  const std::string path = "fit.split_half";
+  const JsonReader::json& j = r.Object(f, "fit", "split_half");
+  SplitHalfSummary summary;
+  summary.significance = r.Number(j, path, "significance");
+  summary.widening = r.Number(j, path, "widening");
+  if (!(summary.widening >= 1.0)) {
+    r.Fail(fmt::format("'{}.widening' = {} is below 1", path, summary.widening));
+  }
+  for (SplitKind kind : {SplitKind::kByTime, SplitKind::kInterleaved}) {
+    const std::string key(ToString(kind));
+    if (!j.contains(key)) continue;
+    const JsonReader::json& q = r.Object(j, path, key);
+    const std::string at = JsonReader::Join(path, key);
+    SplitHalfComparison c;
+    c.kind = kind;
+    const JsonReader::json& counts = r.ArrayValue(r.Field(q, at, "positions"), at + ".positions", 2);
+    c.positions_first = static_cast<int>(r.NumberValue(counts[0], at + ".positions[0]"));
+    c.positions_second = static_cast<int>(r.NumberValue(counts[1], at + ".positions[1]"));
+    c.determined = r.Bool(q, at, "determined");
+    if (c.determined) {
+      c.dof = static_cast<int>(r.Integer(q, at, "dof", 1, kNumModelParameters));
+      const JsonReader::json& z = r.ArrayValue(r.Field(q, at, "z"), at + ".z",
+                                               static_cast<std::size_t>(c.dof));
+      for (std::size_t i = 0; i < z.size(); ++i) {
+        c.z.push_back(r.NumberValue(z[i], fmt::format("{}.z[{}]", at, i)));
+      }
+      c.rms_z = r.Number(q, at, "rms_z");
+      c.chi2 = r.Number(q, at, "chi2");
+      c.p_value = r.Number(q, at, "p_value");
+      c.disagree = r.Bool(q, at, "disagree");
+    }
+    summary.comparisons.push_back(std::move(c));
+  }
+  return summary;
+}
 
 // The parameters (or, with `is_std`, their 1σ) of `object`, checked for what
 // a calibration can hold.
@@ -142,9 +202,18 @@ std::string CalibrationToJson(const Calibration& c) {
     }
   }
   PutModel(j, c.model, "");
+  if (c.bias_drift) {
+    j["bias_drift_mps2_per_s"] = Vec3(c.bias_drift->mps2_per_s, "bias_drift_mps2_per_s");
+    j["bias_reference_time_s"] = Num(c.bias_drift->reference_time_s, "bias_reference_time_s");
+    j["bias_drift_p_value"] = Num(c.bias_drift->p_value, "bias_drift_p_value");
+  }
   if (c.std) {
     json s;
     PutModel(s, *c.std, "std.");
+    if (c.bias_drift) {
+      s["bias_drift_mps2_per_s"] =
+          Vec3(c.bias_drift->std_mps2_per_s, "std.bias_drift_mps2_per_s");
+    }
     j["std"] = s;
   }
   if (c.fit) {
@@ -165,6 +234,7 @@ std::string CalibrationToJson(const Calibration& c) {
       fit["cross_validation_rms_mps2"] =
           Num(*f.cross_validation_rms_mps2, "fit.cross_validation_rms_mps2");
     }
+    if (f.split_half) fit["split_half"] = SplitHalfJson(*f.split_half);
     j["fit"] = fit;
   }
   json positions = json::array();
@@ -273,6 +343,16 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
     r.Object(j, "", "std");
     c.std = ReadModel(r, j["std"], "std", true);
   }
+  if (j.contains("bias_drift_mps2_per_s")) {
+    BiasDrift drift;
+    drift.mps2_per_s = r.Vector(j, "", "bias_drift_mps2_per_s");
+    drift.reference_time_s = r.Number(j, "", "bias_reference_time_s");
+    drift.p_value = r.Number(j, "", "bias_drift_p_value");
+    if (j.contains("std") && j["std"].contains("bias_drift_mps2_per_s")) {
+      drift.std_mps2_per_s = r.Vector(j["std"], "std", "bias_drift_mps2_per_s");
+    }
+    c.bias_drift = drift;
+  }
   if (j.contains("fit")) {
     const json& f = r.Object(j, "", "fit");
     FitSummary fit;
@@ -287,6 +367,7 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
     fit.variance_factor = r.OptionalNumber(f, "fit", "variance_factor");
     fit.position_scatter_mps2 = r.OptionalNumber(f, "fit", "position_scatter_mps2");
     fit.cross_validation_rms_mps2 = r.OptionalNumber(f, "fit", "cross_validation_rms_mps2");
+    if (f.contains("split_half")) fit.split_half = ReadSplitHalf(r, f);
     c.fit = fit;
   }
   if (j.contains("positions")) {

@@ -11,6 +11,7 @@
 #include "report/html.h"
 #include "report/sections.h"
 #include "report/sphere_map.h"
+#include "report/split_half_table.h"
 #include "report/svg.h"
 
 namespace mpcal::report {
@@ -227,6 +228,7 @@ std::string CalibrationSection(const Calibration& c) {
   if (c.fit) {
     html += "<h3>Fit</h3>\n";
     html += FitTable(*c.fit);
+    if (c.fit->split_half) html += SplitHalfTable(*c.fit->split_half, c.model_kind);
   }
   html += "<h3>Warnings</h3>\n";
   html += WarningsList(c.warnings);

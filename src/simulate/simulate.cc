@@ -156,6 +156,7 @@ std::vector<Eigen::Vector3d> CubeDirections26() {
 
 std::string SimulateStaticOptions::Validate() const {
   const DevicePreset& dev = device;
+  if (!bias_drift_mps2_per_s.allFinite()) return "bias_drift_mps2_per_s must be finite";
   for (const auto& [value, name] :
        {std::pair{dev.noise_density_mps2_per_sqrt_hz,
                   "device.noise_density_mps2_per_sqrt_hz"},
@@ -392,6 +393,7 @@ SimulatedSession SimulateStatic(const SimulateStaticOptions& options,
     // Specific force: what an ideal accelerometer senses, in the sensor frame.
     const Eigen::Vector3d f = q_level_sensor.conjugate() * (accel_level + up_level);
     Eigen::Vector3d y = model.Forward(f) + sigma * noise.Normal3();
+    y += options.bias_drift_mps2_per_s * (t - static_cast<double>(total - 1) / rate);
     if (res > 0) y = (y / res).array().round().matrix() * res;
     if (range > 0) y = y.cwiseMax(-range).cwiseMin(range);
     switch (options.units) {
@@ -450,6 +452,12 @@ SimulatedSession SimulateStatic(const SimulateStaticOptions& options,
       truth.model.bias_mps2 +=
           Eigen::Vector3d::Constant(options.counts_offset / options.counts_per_mps2);
       break;
+  }
+  if (!options.bias_drift_mps2_per_s.isZero()) {
+    BiasDrift drift;
+    drift.mps2_per_s = options.bias_drift_mps2_per_s;
+    drift.reference_time_s = static_cast<double>(total - 1) / rate;
+    truth.bias_drift = drift;
   }
   double step = res;
   if (options.units == AccelUnits::kCounts)

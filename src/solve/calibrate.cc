@@ -123,6 +123,10 @@ CalibrateResult CalibrateRecording(const Recording& recording,
 
   SolveOptions solve = options.solve;
   solve.nominal_offset_mps2 = nominal_offset_mps2;
+  // A drifting bias is reported at the end of the session: the latest bias.
+  if (!solve.bias_reference_time_s && !recording.time_s.empty()) {
+    solve.bias_reference_time_s = recording.time_s.back();
+  }
   result.solve = Solve(result.positions, solve);
   result.warnings = result.detection.warnings;  // positions dropped for clipping
   result.warnings.insert(result.warnings.end(), result.solve.warnings.begin(),
@@ -138,6 +142,7 @@ CalibrateResult CalibrateRecording(const Recording& recording,
   }
   c.model = result.solve.estimate;
   c.std = result.solve.std;
+  c.bias_drift = result.solve.bias_drift;
   FitSummary fit;
   fit.positions = static_cast<int>(result.positions.size());
   fit.residual_rms_before_mps2 = result.solve.residual_rms_before_mps2;
@@ -152,6 +157,7 @@ CalibrateResult CalibrateRecording(const Recording& recording,
   if (!result.solve.cross_validation_residual_mps2.empty()) {
     fit.cross_validation_rms_mps2 = result.solve.cross_validation_rms_mps2;
   }
+  fit.split_half = result.solve.split_half;
   c.fit = fit;
   for (std::size_t k = 0; k < result.positions.size(); ++k) {
     PositionSummary s;

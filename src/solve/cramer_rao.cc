@@ -21,13 +21,14 @@ using Jet = ceres::Jet<double, kNumModelParameters + 2>;
 // Reciprocal condition below which the information matrix is singular.
 constexpr double kSingularReciprocalCondition = 1e-12;
 
-}  // namespace
-
-Eigen::Matrix<double, 9, 9> CramerRaoBound(const ErrorModel& truth,
-                                           std::span<const BoundPosition> positions,
-                                           double gravity_mps2, ModelKind model) {
+// The bound of the packed parameters; with `drift`, three drift rates of
+// the bias are estimated besides them (columns p..p+2 of the information).
+Eigen::Matrix<double, 9, 9> Bound(const ErrorModel& truth,
+                                  std::span<const BoundPosition> positions,
+                                  double gravity_mps2, ModelKind model, bool drift) {
   const int p = ParameterCount(model);
-  Eigen::MatrixXd information = Eigen::MatrixXd::Zero(p, p);
+  const int n = p + (drift ? 3 : 0);
+  Eigen::MatrixXd information = Eigen::MatrixXd::Zero(n, n);
 
   // Seed one derivative per packed parameter; the last two are the angles.
   double packed[kNumModelParameters];
@@ -52,8 +53,11 @@ Eigen::Matrix<double, 9, 9> CramerRaoBound(const ErrorModel& truth,
     }
     const Eigen::Matrix<Jet, 3, 1> y = m.Forward(direction * Jet(gravity_mps2));
 
-    Eigen::Matrix<double, 3, Eigen::Dynamic> j_theta(3, p);
+    Eigen::Matrix<double, 3, Eigen::Dynamic> j_theta = Eigen::MatrixXd::Zero(3, n);
     Eigen::Matrix<double, 3, 2> j_u;
+    if (drift) {
+      j_theta.rightCols(3) = pos.time_from_reference_s * Eigen::Matrix3d::Identity();
+    }
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < p; ++c) j_theta(r, c) = y[r].v[c];
       j_u(r, 0) = y[r].v[kNumModelParameters];
@@ -76,8 +80,23 @@ Eigen::Matrix<double, 9, 9> CramerRaoBound(const ErrorModel& truth,
         positions.size(), p));
   }
   Eigen::Matrix<double, 9, 9> bound = Eigen::Matrix<double, 9, 9>::Zero();
-  bound.topLeftCorner(p, p) = ldlt.solve(Eigen::MatrixXd::Identity(p, p));
+  bound.topLeftCorner(p, p) =
+      ldlt.solve(Eigen::MatrixXd::Identity(n, n)).topLeftCorner(p, p);
   return bound;
+}
+
+}  // namespace
+
+Eigen::Matrix<double, 9, 9> CramerRaoBound(const ErrorModel& truth,
+                                           std::span<const BoundPosition> positions,
+                                           double gravity_mps2, ModelKind model) {
+  return Bound(truth, positions, gravity_mps2, model, false);
+}
+
+Eigen::Matrix<double, 9, 9> CramerRaoBoundWithDrift(const ErrorModel& truth,
+                                                    std::span<const BoundPosition> positions,
+                                                    double gravity_mps2, ModelKind model) {
+  return Bound(truth, positions, gravity_mps2, model, true);
 }
 
 }  // namespace mpcal

@@ -45,7 +45,12 @@ Observability AnalyseObservability(const Eigen::MatrixXd& jacobian,
   // Columns in units of each parameter's plausible range: a singular value s
   // is a combination whose 1σ is range/s.
   Eigen::VectorXd range(n);
-  for (Eigen::Index j = 0; j < n; ++j) range[j] = Range(j);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    // A drifting bias (its rates come after the model's parameters):
+    // plausibly up to 1 g over a session of 1000 s.
+    const bool drift = names[static_cast<std::size_t>(j)].starts_with("bias_drift");
+    range[j] = drift ? kBiasRangeMps2 / 1000.0 : Range(j);
+  }
   const Eigen::MatrixXd scaled = jacobian * range.asDiagonal();
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled, Eigen::ComputeFullV);
   const Eigen::VectorXd sv = svd.singularValues();

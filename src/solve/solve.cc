@@ -15,6 +15,7 @@
 #include "mpcal/plausible.h"
 #include "observability.h"
 #include "residual.h"
+#include "split_half.h"
 #include "weights.h"
 
 namespace mpcal {
@@ -48,6 +49,7 @@ struct Blocks {
   double bias[3];
   double scale[3];
   double angles[3];
+  double drift[3] = {0.0, 0.0, 0.0};  // m/s² per s, with a drifting bias
 
   explicit Blocks(const ErrorModel& m) {
     double p[kNumModelParameters];
@@ -63,7 +65,16 @@ struct Blocks {
     std::copy(angles, angles + 3, p + 6);
     return ErrorModel::FromParameters(p);
   }
+  // The model with the bias of a position held `dt_s` from the reference.
+  ErrorModel ModelAt(double dt_s) const {
+    ErrorModel m = Model();
+    m.bias_mps2 += Eigen::Vector3d(drift[0], drift[1], drift[2]) * dt_s;
+    return m;
+  }
 };
+
+// The middle of a position, where a drifting bias is taken to act on it.
+double MidTime(const PositionObservation& p) { return 0.5 * (p.start_s + p.end_s); }
 
 double Magnitude(const ErrorModel& model, const PositionObservation& p, double gravity_mps2) {
   return model.Correct(p.mean_mps2).norm() - gravity_mps2;
@@ -106,9 +117,10 @@ ceres::LossFunction* MakeLoss(RobustLoss loss, double scale) {
   return nullptr;
 }
 
-std::vector<std::string> EstimatedNames(ModelKind model) {
+std::vector<std::string> EstimatedNames(ModelKind model, bool drift = false) {
   std::vector<std::string> names;
   for (int i = 0; i < ParameterCount(model); ++i) names.emplace_back(kParameterNames[i]);
+  if (drift) names.insert(names.end(), {"bias_drift_x", "bias_drift_y", "bias_drift_z"});
   return names;
 }
 
@@ -146,8 +158,11 @@ struct FitInput {
 // observability check and cross-validation need afterwards.
 class Fit {
  public:
-  Fit(const FitInput& input, const ErrorModel& start, const SolveOptions& options)
-      : input_(input), options_(options), blocks_(start) {}
+  // With `drift_reference_s`, the bias drifts linearly in time and the
+  // estimate's bias is the bias at that time.
+  Fit(const FitInput& input, const ErrorModel& start, const SolveOptions& options,
+      std::optional<double> drift_reference_s = std::nullopt)
+      : input_(input), options_(options), blocks_(start), drift_reference_s_(drift_reference_s) {}
 
   // Two passes: the weights depend on the parameters and on the residuals, so
   // the second weighs each position at the first estimate. A robust loss, when asked
@@ -161,7 +176,7 @@ class Fit {
     sigmas_ = Sigmas(blocks_.Model());
     Build(RobustLoss::kNone);
     const internal::Observability obs =
-        internal::AnalyseObservability(Jacobian(), EstimatedNames(options_.model));
+        internal::AnalyseObservability(Jacobian(), Names());
     if (!obs.undetermined.empty()) {
       const bool only_angles =
           std::all_of(obs.undetermined.begin(), obs.undetermined.end(),
@@ -201,7 +216,8 @@ class Fit {
   // |a| − g of position k at the fit's estimate, or predicted by a refit
   // without it (one pass from this estimate, with the same weights).
   double Residual(std::size_t k) const {
-    return Magnitude(blocks_.Model(), input_.positions[k], options_.gravity_mps2);
+    return Magnitude(blocks_.ModelAt(Dt(input_.positions[k])), input_.positions[k],
+                     options_.gravity_mps2);
   }
   double PredictedWithout(std::size_t k) const {
     FitInput rest;
@@ -215,7 +231,8 @@ class Fit {
     ceres::Problem problem;
     AddResiduals(rest.positions, sigmas, options_.robust, blocks, problem);
     RunSolver(options_, problem);
-    return Magnitude(blocks.Model(), input_.positions[k], options_.gravity_mps2);
+    return Magnitude(blocks.ModelAt(Dt(input_.positions[k])), input_.positions[k],
+                     options_.gravity_mps2);
   }
 
   // Whitened residuals × estimated parameters at the current estimate.
@@ -248,13 +265,19 @@ class Fit {
                               "record more orientations",
                               input_.positions.size()));
     }
-    const int p = ParameterCount(options_.model);
+    const int p = static_cast<int>(Names().size());
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> c(p, p);
     covariance.GetCovarianceMatrix(blocks, c.data());
     return c;
   }
 
   ErrorModel Estimate() const { return blocks_.Model(); }
+  bool drifts() const { return drift_reference_s_.has_value(); }
+  Eigen::Vector3d Drift() const {
+    return Eigen::Vector3d(blocks_.drift[0], blocks_.drift[1], blocks_.drift[2]);
+  }
+  // The estimated parameters, in the order of the covariance.
+  std::vector<std::string> Names() const { return EstimatedNames(options_.model, drifts()); }
   /// σ of each position's residual from its sensor noise alone, without the
   /// scatter component.
   const std::vector<double>& own_sigmas() const { return own_sigmas_; }
@@ -267,7 +290,9 @@ class Fit {
   std::vector<double> Sigmas(const ErrorModel& m) const {
     std::vector<double> s;
     for (std::size_t k = 0; k < input_.positions.size(); ++k) {
-      s.push_back(internal::ResidualSigma(m, input_.positions[k].mean_mps2, input_.noise[k],
+      ErrorModel at = m;
+      at.bias_mps2 += Drift() * Dt(input_.positions[k]);
+      s.push_back(internal::ResidualSigma(at, input_.positions[k].mean_mps2, input_.noise[k],
                                           input_.positions[k].samples));
     }
     return s;
@@ -277,6 +302,16 @@ class Fit {
                     const std::vector<double>& sigmas, RobustLoss loss, Blocks& blocks,
                     ceres::Problem& problem) const {
     for (std::size_t k = 0; k < positions.size(); ++k) {
+      if (drifts()) {
+        auto* cost =
+            new ceres::AutoDiffCostFunction<internal::DriftMagnitudeResidual, 1, 3, 3, 3, 3>(
+                new internal::DriftMagnitudeResidual(positions[k].mean_mps2,
+                                                     options_.gravity_mps2, sigmas[k],
+                                                     Dt(positions[k])));
+        problem.AddResidualBlock(cost, MakeLoss(loss, loss_scale_), blocks.bias, blocks.scale,
+                                 blocks.angles, blocks.drift);
+        continue;
+      }
       auto* cost = new ceres::AutoDiffCostFunction<MagnitudeResidual, 1, 3, 3, 3>(
           new MagnitudeResidual(positions[k].mean_mps2, options_.gravity_mps2, sigmas[k]));
       problem.AddResidualBlock(cost, MakeLoss(loss, loss_scale_), blocks.bias, blocks.scale,
@@ -296,12 +331,19 @@ class Fit {
   std::vector<double*> Estimated() {
     std::vector<double*> blocks = {blocks_.bias, blocks_.scale};
     if (options_.model == ModelKind::kShinElSheimy9) blocks.push_back(blocks_.angles);
+    if (drifts()) blocks.push_back(blocks_.drift);
     return blocks;
+  }
+
+  // Time of a position from the drift's reference (0 without drift).
+  double Dt(const PositionObservation& p) const {
+    return drift_reference_s_ ? MidTime(p) - *drift_reference_s_ : 0.0;
   }
 
   FitInput input_;
   SolveOptions options_;
   Blocks blocks_;
+  std::optional<double> drift_reference_s_;
   std::vector<double> sigmas_;
   std::vector<double> own_sigmas_;
   double loss_scale_ = 1.0;
@@ -347,6 +389,77 @@ std::vector<double> Standardised(Fit& fit, std::size_t count) {
   return Standardise(fit, count).total;
 }
 
+// The split-half check, and every 1σ widened by its rule when two halves
+// disagree beyond chance (METHOD.md §9).
+void WidenBySplitHalves(std::span<const PositionObservation> positions,
+                        const SolveOptions& options, SolveResult& result) {
+  result.split_half = internal::CheckSplitHalves(positions, result.used, options);
+  const double widening = result.split_half->widening;
+  if (!(widening > 1.0)) return;
+  result.covariance *= widening * widening;
+  result.std = FromVector(result.covariance.diagonal().cwiseMax(0.0).cwiseSqrt());
+  if (result.bias_drift) result.bias_drift->std_mps2_per_s *= widening;
+  for (const SplitHalfComparison& c : result.split_half->comparisons) {
+    if (!c.determined || !c.disagree) continue;
+    result.warnings.push_back(fmt::format(
+        "the two halves of the positions ({}, {} and {}) give estimates that differ beyond "
+        "their 1σ (RMS z {:.2f} over {} parameters, chi-square p = {:.2g}): something the "
+        "model does not capture (a drifting bias, a bumped stretch) is in the session; every "
+        "1σ is widened by {:.2f}",
+        c.kind == SplitKind::kByTime ? "by time" : "alternate positions", c.positions_first,
+        c.positions_second, c.rms_z, c.dof, c.p_value, widening));
+  }
+}
+
+// Fewer redundant positions than this, with the drift's three parameters
+// fitted, leave the F test too little to judge by.
+constexpr int kMinDriftRedundancy = 3;
+
+// The bias drift model fitted to the same positions and chosen over the
+// constant bias when it is significant: an F test of the drop in χ² for its
+// three parameters, both χ² with the constant fit's weights (its noise and
+// scatter), F(3, K − p − 3), at options.bias_drift_significance. F rather
+// than a χ² test, since the weights' overall level is itself uncertain.
+void ChooseBiasDrift(const FitInput& in, const SolveOptions& options, double reference_s,
+                     std::unique_ptr<Fit>& fit, SolveResult& result) {
+  const int redundancy = static_cast<int>(in.positions.size()) -
+                         ParameterCount(options.model) - 3;
+  if (options.force_bias_drift && redundancy < 1) {
+    throw Error(fmt::format("{} positions are too few for the model with a drifting bias",
+                            in.positions.size()));
+  }
+  if (redundancy < (options.force_bias_drift ? 1 : kMinDriftRedundancy)) return;
+  auto drifting = std::make_unique<Fit>(in, fit->Estimate(), options, reference_s);
+  try {
+    drifting->Run();
+  } catch (const Error&) {
+    if (options.force_bias_drift) throw;
+    return;  // the positions do not separate a drift from the other parameters
+  }
+  if (drifting->summary().termination_type != ceres::CONVERGENCE) {
+    if (options.force_bias_drift) throw Error("the fit with a drifting bias did not converge");
+    return;
+  }
+  double chi2_constant = 0.0;
+  double chi2_drift = 0.0;
+  for (std::size_t j = 0; j < in.positions.size(); ++j) {
+    chi2_constant += std::pow(fit->Residual(j) / fit->sigmas()[j], 2);
+    chi2_drift += std::pow(drifting->Residual(j) / fit->sigmas()[j], 2);
+  }
+  if (!(chi2_drift > 0.0)) return;
+  const double f = (chi2_constant - chi2_drift) / 3.0 / (chi2_drift / redundancy);
+  const double p_value = internal::FUpperTail(f, 3, redundancy);
+  result.bias_drift_p_value = p_value;
+  if (!(p_value < options.bias_drift_significance) && !options.force_bias_drift) return;
+  BiasDrift drift;
+  drift.mps2_per_s = drifting->Drift();
+  drift.reference_time_s = reference_s;
+  drift.p_value = p_value;
+  result.bias_drift = drift;
+  result.iterations += drifting->iterations();
+  fit = std::move(drifting);
+}
+
 }  // namespace
 
 std::string_view ToString(RobustLoss loss) {
@@ -379,6 +492,9 @@ std::string SolveOptions::Validate() const {
   }
   if (max_iterations < 1) return "max_iterations must be at least 1";
   if (!(outlier_threshold > 1.0)) return "outlier_threshold must be above 1";
+  if (!(split_half_significance > 0.0 && split_half_significance < 1.0)) {
+    return "split_half_significance must be in (0, 1)";
+  }
   return "";
 }
 
@@ -478,10 +594,24 @@ SolveResult Solve(std::span<const PositionObservation> positions,
     ++excluded;
   }
 
+  double reference_s = 0.0;
+  for (const auto& position : positions) reference_s = std::max(reference_s, position.end_s);
+  reference_s = options.bias_reference_time_s.value_or(reference_s);
+  if (options.consider_bias_drift || options.force_bias_drift) {
+    ChooseBiasDrift(Select(positions, noise, result.used), options, reference_s, fit, result);
+  }
+
   result.estimate = fit->Estimate();
   result.position_scatter_mps2 = std::sqrt(fit->scatter_variance());
   result.final_cost = fit->summary().final_cost;
   result.residual_after_mps2 = MagnitudeResiduals(result.estimate, positions, options.gravity_mps2);
+  if (fit->drifts()) {
+    for (std::size_t k = 0; k < count; ++k) {
+      ErrorModel at = result.estimate;
+      at.bias_mps2 += fit->Drift() * (MidTime(positions[k]) - reference_s);
+      result.residual_after_mps2[k] = Magnitude(at, positions[k], options.gravity_mps2);
+    }
+  }
   result.residual_rms_before_mps2 = Rms(result.residual_before_mps2, result.used);
   result.residual_rms_after_mps2 = Rms(result.residual_after_mps2, result.used);
 
@@ -501,15 +631,16 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   result.message = fit->summary().message;
 
   for (const std::string& name :
-       internal::AnalyseObservability(fit->Jacobian(), EstimatedNames(options.model))
-           .poorly_determined) {
+       internal::AnalyseObservability(fit->Jacobian(), fit->Names()).poorly_determined) {
     result.warnings.push_back(fmt::format(
         "{} is poorly determined by these positions (strongly correlated with other "
         "parameters): add positions that fill the gaps 'mpcal detect' shows",
         name));
   }
 
-  const int dof = static_cast<int>(std::count(result.used.begin(), result.used.end(), true)) - p;
+  const int fitted = p + (fit->drifts() ? 3 : 0);
+  const int dof =
+      static_cast<int>(std::count(result.used.begin(), result.used.end(), true)) - fitted;
   if (dof == 0) {
     result.warnings.push_back(fmt::format(
         "{} positions for {} parameters leave no redundancy: the residuals are zero by "
@@ -535,7 +666,7 @@ SolveResult Solve(std::span<const PositionObservation> positions,
       const auto row = static_cast<Eigen::Index>(j);
       without << jacobian.topRows(row), jacobian.bottomRows(jacobian.rows() - row - 1);
       const bool determined =
-          internal::AnalyseObservability(without, EstimatedNames(options.model)).undetermined.empty();
+          internal::AnalyseObservability(without, fit->Names()).undetermined.empty();
       result.cross_validation_residual_mps2[in.index[j]] =
           determined ? fit->PredictedWithout(j) : std::numeric_limits<double>::quiet_NaN();
       predicted[in.index[j]] = determined;
@@ -562,9 +693,20 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   result.variance_factor = dof > 0 ? chi2 / dof : 1.0;
   constexpr double kPriorDof = 10.0;
   const double covariance_scale = (kPriorDof + chi2) / (kPriorDof + dof);
-  result.covariance.topLeftCorner(p, p) =
-      std::max(1.0, covariance_scale) * fit->UnscaledCovariance();
+  const Eigen::MatrixXd covariance = std::max(1.0, covariance_scale) * fit->UnscaledCovariance();
+  result.covariance.topLeftCorner(p, p) = covariance.topLeftCorner(p, p);
   result.std = FromVector(result.covariance.diagonal().cwiseMax(0.0).cwiseSqrt());
+  if (fit->drifts()) {
+    result.bias_drift->std_mps2_per_s =
+        covariance.bottomRightCorner(3, 3).diagonal().cwiseMax(0.0).cwiseSqrt();
+  }
+  if (options.split_half_check) {
+    // Halves with a drifting bias report it at the same time as the whole.
+    SolveOptions split_options = options;
+    split_options.bias_reference_time_s = reference_s;
+    split_options.force_bias_drift = result.bias_drift.has_value();
+    WidenBySplitHalves(positions, split_options, result);
+  }
   return result;
 }
 

@@ -45,6 +45,49 @@ double ResidualSigma(const ErrorModel& model, const Eigen::Vector3d& mean_mps2,
   return std::sqrt(variance);
 }
 
+namespace {
+
+// The continued fraction of the incomplete beta function (Lentz's method),
+// converging for x < (a + 1)/(a + b + 2).
+double BetaContinuedFraction(double a, double b, double x) {
+  constexpr double kTiny = 1e-300;
+  double c = 1.0;
+  double d = 1.0 - (a + b) * x / (a + 1.0);
+  d = 1.0 / (std::abs(d) < kTiny ? kTiny : d);
+  double h = d;
+  for (int m = 1; m <= 300; ++m) {
+    for (int half = 0; half < 2; ++half) {
+      const double numerator =
+          half == 0 ? m * (b - m) * x / ((a + 2.0 * m - 1.0) * (a + 2.0 * m))
+                    : -(a + m) * (a + b + m) * x / ((a + 2.0 * m) * (a + 2.0 * m + 1.0));
+      d = 1.0 + numerator * d;
+      d = 1.0 / (std::abs(d) < kTiny ? kTiny : d);
+      c = 1.0 + numerator / c;
+      if (std::abs(c) < kTiny) c = kTiny;
+      h *= d * c;
+      if (half == 1 && std::abs(d * c - 1.0) < 1e-15) return h;
+    }
+  }
+  return h;
+}
+
+// The regularised incomplete beta function I_x(a, b).
+double RegularisedBeta(double x, double a, double b) {
+  if (x <= 0.0) return 0.0;
+  if (x >= 1.0) return 1.0;
+  const double front = std::exp(std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) +
+                                a * std::log(x) + b * std::log1p(-x));
+  if (x < (a + 1.0) / (a + b + 2.0)) return front * BetaContinuedFraction(a, b, x) / a;
+  return 1.0 - front * BetaContinuedFraction(b, a, 1.0 - x) / b;
+}
+
+}  // namespace
+
+double FUpperTail(double f, int d1, int d2) {
+  if (!(f > 0.0)) return 1.0;
+  return RegularisedBeta(d2 / (d2 + d1 * f), 0.5 * d2, 0.5 * d1);
+}
+
 double ChiSquare1MedianQuantile(std::size_t count, double alpha) {
   // P(median > x) = P(fewer than rank + 1 of the count values are <= x)
   // = Σ_{i <= rank} C(count, i) F^i (1 − F)^(count − i), F the χ²₁ CDF.
@@ -87,21 +130,37 @@ double PositionScatterVariance(const std::vector<double>& residuals_mps2,
     return q[count / 2];
   };
   if (median_ratio(0.0) <= ChiSquare1MedianQuantile(count, kScatterSignificance)) return 0.0;
-  // The ratio falls monotonically with τ²: bisect between 0 and the largest
-  // squared residual over the target, which brings every ratio, and so
-  // their median, below the target.
-  const double target = kChiSquare1Median;
-  double lo = 0.0;
-  double hi = 0.0;
-  for (std::size_t k = 0; k < count; ++k) {
-    const double h = std::clamp(leverages[k], 0.0, 0.999);
-    hi = std::max(hi, residuals_mps2[k] * residuals_mps2[k] / (target * (1.0 - h)));
-  }
-  for (int i = 0; i < 100 && hi - lo > 1e-12 * hi; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (median_ratio(mid) > target ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
+  // Both ratios fall monotonically with τ²: bisect between 0 and the
+  // largest squared residual over the target, which brings every ratio, and
+  // so their median and mean, below the target.
+  auto solve = [&](auto ratio, double target) {
+    double lo = 0.0;
+    double hi = 0.0;
+    for (std::size_t k = 0; k < count; ++k) {
+      const double h = std::clamp(leverages[k], 0.0, 0.999);
+      hi = std::max(hi, residuals_mps2[k] * residuals_mps2[k] / (target * (1.0 - h)));
+    }
+    if (ratio(0.0) <= target) return 0.0;
+    for (int i = 0; i < 100 && hi - lo > 1e-12 * hi; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (ratio(mid) > target ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+  };
+  auto mean_ratio = [&](double tau2) {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < count; ++k) {
+      const double h = std::clamp(leverages[k], 0.0, 0.999);
+      sum += residuals_mps2[k] * residuals_mps2[k] /
+             ((sigmas_mps2[k] * sigmas_mps2[k] + tau2) * (1.0 - h));
+    }
+    return sum / static_cast<double>(count);
+  };
+  // The smaller of the robust estimate (the median matched to χ²₁'s) and the
+  // moment estimate (the mean matched to 1): the median keeps a few bumped
+  // positions from inflating τ², the mean keeps a median that is high by
+  // chance (white noise that just passed the test) from doing so.
+  return std::min(solve(median_ratio, kChiSquare1Median), solve(mean_ratio, 1.0));
 }
 
 }  // namespace mpcal::internal

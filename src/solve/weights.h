@@ -38,7 +38,9 @@ double ChiSquare1MedianQuantile(std::size_t count, double alpha);
 /// added to every position's variance: σ_k² + τ². A variance component
 /// (Förstner 1979) estimated robustly, so that one bumped position cannot
 /// inflate it and hide itself: the median of r_k²/((σ_k² + τ²)(1 − h_k)),
-/// h_k the position's leverage, is matched to that of χ²₁.
+/// h_k the position's leverage, is matched to that of χ²₁; or, when it is
+/// smaller, the estimate that matches their mean to 1 (a median high by
+/// chance must not inflate it either).
 ///
 /// Estimated only on evidence, by a test at 1 %: the median of the
 /// standardised squares r_k²/(σ_k²(1 − h_k)) must exceed what the median of
@@ -51,6 +53,10 @@ double ChiSquare1MedianQuantile(std::size_t count, double alpha);
 double PositionScatterVariance(const std::vector<double>& residuals_mps2,
                                const std::vector<double>& sigmas_mps2,
                                const std::vector<double>& leverages);
+
+/// P(F ≥ f) for the F distribution with (d1, d2) degrees of freedom: the
+/// regularised incomplete beta I_x(d2/2, d1/2), x = d2/(d2 + d1 f).
+double FUpperTail(double f, int d1, int d2);
 
 /// Fewer redundant positions (K − p) than this never show a scatter: the
 /// median of so few residuals says too little.

@@ -8,6 +8,14 @@ mpcal_cli_test(calibrate_help EXIT 0 MATCH "mpcal calibrate session.csv -o calib
 mpcal_cli_test(calibrate_xsens_counts EXIT 0
   MATCH "^static positions: 38 used"
   ARGS calibrate ${_xsens} --units counts --gravity 9.81744 -o calib.json)
+# The split-half check on the real recording: both splits possible, the
+# halves consistent, and stored in the file.
+mpcal_cli_test(calibrate_xsens_split_half EXIT 0
+  MATCH "split-half \\(by time, 19 \\+ 19 positions\\): RMS z [0-9.]+ \\(honest 1σ: 1 ± 0.24\\); consistent"
+  ARGS calibrate ${_xsens} --units counts --gravity 9.81744 -o calib.json)
+mpcal_cli_test(calibrate_ferraris_split_half_not_possible EXIT 0
+  MATCH "split-half \\(by time, 5 \\+ 5 positions\\): not possible"
+  ARGS calibrate ${_ferraris} --rate 102.4 --model bias-scale-6 -o calib.json)
 mpcal_cli_test(calibrate_xsens_read_as_mps2 EXIT 1
   MATCH "look like raw ADC counts: add --units counts" ABSENT calib.json
   ARGS calibrate ${_xsens} --gravity 9.81744 -o calib.json)

@@ -48,3 +48,19 @@ add_test(NAME cli.simulate_static_files
     $<TARGET_FILE:mpcal_cli>
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(cli.simulate_static_files PROPERTIES LABELS cli)
+
+# A bias that drifts over the session: the truth file states it, calibrate
+# finds it (F test) and writes it beside the bias at the end of the session.
+add_test(NAME cli.simulate_bias_drift_found
+  COMMAND sh -c "set -e; rm -rf drift_files && mkdir drift_files && cd drift_files
+    \"$0\" simulate static --preset mti-g --seed 5 --bias-drift 2e-5,-1e-5,3e-5 -o s.csv --truth t.json
+    grep -q '\"bias_drift_mps2_per_s\"' t.json
+    \"$0\" calibrate s.csv -o c.json > out.txt 2>&1
+    grep -Eq '^bias drift x, y, z: .* mg/min \\\\(F test p = ' out.txt
+    grep -q '\"bias_drift_mps2_per_s\"' c.json
+    grep -q '\"bias_reference_time_s\"' c.json"
+    $<TARGET_FILE:mpcal_cli>
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(cli.simulate_bias_drift_found PROPERTIES LABELS cli)
+mpcal_cli_test(simulate_bad_bias_drift EXIT 1 MATCH "--bias-drift takes one value or three"
+  ABSENT s.csv ARGS simulate static --bias-drift 1e-5,2e-5 -o s.csv)

@@ -133,6 +133,47 @@ TEST(CalibrationFile, RoundTripIsExact) {
   EXPECT_EQ(r.provenance->input, "session.csv");
 }
 
+TEST(CalibrationFile, SplitHalfCheckRoundTrips) {
+  Calibration c = FullCalibration();
+  SplitHalfSummary check;
+  check.widening = 1.7;
+  SplitHalfComparison by_time;
+  by_time.kind = SplitKind::kByTime;
+  by_time.positions_first = 13;
+  by_time.positions_second = 13;
+  by_time.determined = true;
+  by_time.z = {0.1, -2.5, 3.0, 0.4, -0.5, 0.6, -0.7, 0.8, -0.9};
+  by_time.rms_z = 1.4;
+  by_time.chi2 = 26.0;
+  by_time.dof = 9;
+  by_time.p_value = 0.002;
+  by_time.disagree = true;
+  SplitHalfComparison alternate;
+  alternate.kind = SplitKind::kInterleaved;
+  alternate.positions_first = 13;
+  alternate.positions_second = 13;
+  check.comparisons = {by_time, alternate};
+  c.fit->split_half = check;
+  const Calibration r = CalibrationFromJson(CalibrationToJson(c), "test");
+  ASSERT_TRUE(r.fit->split_half.has_value());
+  const SplitHalfSummary& back = *r.fit->split_half;
+  EXPECT_EQ(back.widening, 1.7);
+  EXPECT_EQ(back.significance, 0.01);
+  ASSERT_EQ(back.comparisons.size(), 2u);
+  EXPECT_EQ(back.comparisons[0].z, by_time.z);
+  EXPECT_EQ(back.comparisons[0].dof, 9);
+  EXPECT_TRUE(back.comparisons[0].disagree);
+  EXPECT_EQ(back.comparisons[0].p_value, 0.002);
+  EXPECT_EQ(back.comparisons[1].kind, SplitKind::kInterleaved);
+  EXPECT_FALSE(back.comparisons[1].determined);
+  const nlohmann::json j = nlohmann::json::parse(CalibrationToJson(c));
+  EXPECT_EQ(j["fit"]["split_half"]["by_time"]["rms_z"], 1.4);
+  // A widening below 1 would shrink the 1σ: refused.
+  nlohmann::json bad = j;
+  bad["fit"]["split_half"]["widening"] = 0.5;
+  EXPECT_THAT(FromJsonError(bad.dump()), HasSubstr("fit.split_half.widening"));
+}
+
 TEST(CalibrationFile, TruthFileWithoutOptionalPartsRoundTrips) {
   Calibration c;
   c.input_units = AccelUnits::kG;

@@ -52,8 +52,20 @@ TEST(PositionScatterVariance, ReadFromNineRedundantPositionsWhenTheEvidenceIsStr
   const std::vector<double> residuals(18, 5e-3), sigmas(18, 1e-3), leverages(18, 0.5);
   const double tau2 = internal::PositionScatterVariance(residuals, sigmas, leverages);
   ASSERT_GT(tau2, 0.0);
-  // The median of r²/((σ² + τ²)(1 − h)) is matched to χ²₁'s.
-  EXPECT_NEAR(25e-6 / ((1e-6 + tau2) * 0.5), internal::kChiSquare1Median, 1e-6);
+  // Equal residuals: matching their mean r²/((σ² + τ²)(1 − h)) to 1 gives
+  // the smaller τ² than matching their median to χ²₁'s (0.455).
+  EXPECT_NEAR(25e-6 / ((1e-6 + tau2) * 0.5), 1.0, 1e-6);
+}
+
+TEST(PositionScatterVariance, NoLargerThanTheMeanOfTheStandardisedSquaresSays) {
+  // Ten standardised squares at 2 and eight at 0: the median (2) passes the
+  // test, but the mean (1.11) says the scatter is small; the median alone
+  // would read τ² = 3.4 σ².
+  std::vector<double> residuals;
+  for (int k = 0; k < 18; ++k) residuals.push_back(k < 10 ? std::sqrt(2.0) * 1e-3 : 0.0);
+  const std::vector<double> sigmas(18, 1e-3), leverages(18, 0.0);
+  const double tau2 = internal::PositionScatterVariance(residuals, sigmas, leverages);
+  EXPECT_NEAR(tau2, (20.0 / 18.0 - 1.0) * 1e-6, 1e-9);
 }
 
 TEST(PositionScatterVariance, NotFromFewerThanFiveRedundantPositions) {

@@ -1,0 +1,113 @@
+#include "split_half.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+#include "mpcal/error.h"
+#include "mpcal/repeat.h"  // ChiSquareUpperTail
+
+namespace mpcal::internal {
+namespace {
+
+using Vector9 = Eigen::Matrix<double, kNumModelParameters, 1>;
+
+// The two halves of the used positions: the first ⌈K/2⌉ in recording order
+// and the rest, or every other one.
+std::array<std::vector<PositionObservation>, 2> Halves(
+    std::span<const PositionObservation> positions,
+    const std::vector<bool>& used,
+    SplitKind kind) {
+  std::vector<PositionObservation> in_use;
+  for (std::size_t k = 0; k < positions.size(); ++k) {
+    if (used[k]) in_use.push_back(positions[k]);
+  }
+  std::array<std::vector<PositionObservation>, 2> halves;
+  const std::size_t first = (in_use.size() + 1) / 2;
+  for (std::size_t k = 0; k < in_use.size(); ++k) {
+    const bool second = kind == SplitKind::kByTime ? k >= first : k % 2 == 1;
+    halves[second ? 1 : 0].push_back(in_use[k]);
+  }
+  return halves;
+}
+
+// The fit of one half, or nullopt when it does not determine the model.
+std::optional<SolveResult> FitHalf(const std::vector<PositionObservation>& half,
+                                   const SolveOptions& options) {
+  try {
+    SolveResult r = Solve(half, options);
+    if (!r.converged()) return std::nullopt;
+    return r;
+  } catch (const Error&) {
+    return std::nullopt;
+  }
+}
+
+SplitHalfComparison Compare(std::span<const PositionObservation> positions,
+                            const std::vector<bool>& used,
+                            SplitKind kind,
+                            const SolveOptions& half_options,
+                            double significance) {
+  const auto halves = Halves(positions, used, kind);
+  SplitHalfComparison c;
+  c.kind = kind;
+  c.positions_first = static_cast<int>(halves[0].size());
+  c.positions_second = static_cast<int>(halves[1].size());
+  const auto first = FitHalf(halves[0], half_options);
+  if (!first) return c;
+  const auto second = FitHalf(halves[1], half_options);
+  if (!second) return c;
+  const int p = ParameterCount(half_options.model);
+  const Vector9 d = ToVector(first->estimate) - ToVector(second->estimate);
+  const Eigen::MatrixXd covariance =
+      (first->covariance + second->covariance).topLeftCorner(p, p);
+  double sum_sq = 0.0;
+  for (int i = 0; i < p; ++i) {
+    const double z = d[i] / std::sqrt(covariance(i, i));
+    c.z.push_back(z);
+    sum_sq += z * z;
+  }
+  c.determined =
+      std::all_of(c.z.begin(), c.z.end(), [](double z) { return std::isfinite(z); });
+  if (!c.determined) {
+    c.z.clear();
+    return c;
+  }
+  c.rms_z = std::sqrt(sum_sq / p);
+  // With the correlations: the parameters of one half are not independent.
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(covariance);
+  const Eigen::VectorXd dp = d.head(p);
+  const double mahalanobis = dp.dot(ldlt.solve(dp));
+  c.chi2 =
+      ldlt.info() == Eigen::Success && ldlt.isPositive() && std::isfinite(mahalanobis)
+          ? mahalanobis
+          : sum_sq;
+  c.dof = p;
+  c.p_value = ChiSquareUpperTail(c.chi2, p);
+  c.disagree = c.p_value < significance;
+  return c;
+}
+
+}  // namespace
+
+SplitHalfSummary CheckSplitHalves(std::span<const PositionObservation> positions,
+                                  const std::vector<bool>& used,
+                                  const SolveOptions& options) {
+  SolveOptions half_options = options;
+  half_options.cross_validate = false;
+  half_options.split_half_check = false;
+  SplitHalfSummary summary;
+  summary.significance = options.split_half_significance;
+  for (SplitKind kind : {SplitKind::kByTime, SplitKind::kInterleaved}) {
+    SplitHalfComparison c =
+        Compare(positions, used, kind, half_options, options.split_half_significance);
+    if (c.determined && c.disagree) {
+      summary.widening = std::max(summary.widening, std::sqrt(c.chi2 / c.dof));
+    }
+    summary.comparisons.push_back(std::move(c));
+  }
+  return summary;
+}
+
+}  // namespace mpcal::internal

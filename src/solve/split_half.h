@@ -1,0 +1,27 @@
+// The split-half check (METHOD.md §9): the used positions split in two, by
+// time and alternately, each half calibrated alone, and the two estimates
+// compared against their combined 1σ. Two halves of one session are two
+// calibrations of the same sensor at the same power-up, so their
+// difference over its 1σ is standard normal when the 1σ is honest; it is
+// the user's evidence on their own recording, with no truth needed.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "mpcal/calibration.h"
+#include "mpcal/solve.h"
+
+namespace mpcal::internal {
+
+/// Calibrates both halves of each split of the used positions with
+/// `options` (no cross-validation, no split-half check of their own) and
+/// compares them. A split is not `determined` when a half leaves a
+/// parameter undetermined or its fit fails. `widening` is √(χ²/dof) of the
+/// worst split whose χ² test rejects at options.split_half_significance,
+/// else 1.
+SplitHalfSummary CheckSplitHalves(std::span<const PositionObservation> positions,
+                                  const std::vector<bool>& used,
+                                  const SolveOptions& options);
+
+}  // namespace mpcal::internal

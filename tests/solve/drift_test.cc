@@ -1,0 +1,110 @@
+// A bias that drifts linearly over the session (README, "Time-varying
+// bias"): fitted besides the constant bias and chosen by an F test at 1 %.
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "mpcal/cramer_rao.h"
+#include "mpcal/solve.h"
+#include "solve/weights.h"
+#include "synthetic_positions.h"
+
+namespace mpcal {
+namespace {
+
+using testing::ConsumerGrade;
+using testing::CubeDirections;
+using testing::kTestGravityMps2;
+using testing::MakeSession;
+using testing::Tilted;
+
+const Eigen::Vector3d kNoise(0.02, 0.025, 0.03);  // m/s² per sample
+constexpr std::size_t kSamples = 1000;
+constexpr double kDwellS = 10.0;
+constexpr double kStepS = 12.0;
+
+// The 26 cube positions held kDwellS each, one every kStepS, their means
+// offset by a bias drift that reaches zero at the end of the last one.
+testing::SyntheticSession DriftingSession(const Eigen::Vector3d& drift_mps2_per_s,
+                                          std::mt19937_64& rng) {
+  // In a random order: held in the cube's own order (x from −1 to +1), a
+  // drift of the x bias would look like a scale-factor error.
+  std::vector<Eigen::Vector3d> directions = CubeDirections();
+  std::shuffle(directions.begin(), directions.end(), rng);
+  auto session =
+      MakeSession(ConsumerGrade(), Tilted(directions, 0.1, rng), kNoise, kSamples, rng);
+  const double end_s =
+      kStepS * (static_cast<double>(session.positions.size()) - 1) + kDwellS;
+  for (std::size_t k = 0; k < session.positions.size(); ++k) {
+    PositionObservation& p = session.positions[k];
+    p.start_s = kStepS * static_cast<double>(k);
+    p.end_s = p.start_s + kDwellS;
+    const double dt = 0.5 * (p.start_s + p.end_s) - end_s;
+    p.mean_mps2 += drift_mps2_per_s * dt;
+    session.bound_positions[k].time_from_reference_s = dt;
+  }
+  return session;
+}
+
+TEST(FUpperTail, MatchesTabulatedQuantiles) {
+  // F(3, 10) exceeds 6.552 with probability 1 %, F(3, 20) 3.098 with 5 %.
+  EXPECT_NEAR(internal::FUpperTail(6.552, 3, 10), 0.01, 2e-4);
+  EXPECT_NEAR(internal::FUpperTail(3.098, 3, 20), 0.05, 5e-4);
+  EXPECT_EQ(internal::FUpperTail(0.0, 3, 20), 1.0);
+}
+
+TEST(Solve, FindsABiasDriftAndReportsTheBiasAtTheEnd) {
+  std::mt19937_64 rng(41);
+  const Eigen::Vector3d drift(2e-5, -1e-5, 3e-5);  // m/s² per s
+  const auto session = DriftingSession(drift, rng);
+  const SolveResult r = Solve(session.positions, SolveOptions{});
+  ASSERT_TRUE(r.converged()) << r.message;
+  ASSERT_TRUE(r.bias_drift_p_value.has_value());
+  ASSERT_TRUE(r.bias_drift.has_value()) << "p = " << *r.bias_drift_p_value;
+  EXPECT_LT(r.bias_drift->p_value, 0.01);
+  EXPECT_DOUBLE_EQ(r.bias_drift->reference_time_s, session.positions.back().end_s);
+  const Eigen::Matrix<double, 9, 1> bound =
+      CramerRaoBoundWithDrift(ConsumerGrade(), session.bound_positions, kTestGravityMps2)
+          .diagonal()
+          .cwiseSqrt();
+  const Eigen::Matrix<double, 9, 1> error =
+      ToVector(r.estimate) - ToVector(ConsumerGrade());
+  for (int i = 0; i < 9; ++i) {
+    EXPECT_LT(std::abs(error[i]), 4.0 * bound[i]) << kParameterNames[i];
+    // The reported 1σ is that of the model with the drift.
+    EXPECT_NEAR(ToVector(r.std)[i] / bound[i], 1.0, 0.35) << kParameterNames[i];
+  }
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_LT(std::abs(r.bias_drift->mps2_per_s[i] - drift[i]),
+              4.0 * r.bias_drift->std_mps2_per_s[i]);
+  }
+  // Without the drift model the same session is fitted worse.
+  SolveOptions constant;
+  constant.consider_bias_drift = false;
+  const SolveResult c = Solve(session.positions, constant);
+  EXPECT_FALSE(c.bias_drift.has_value());
+  EXPECT_GT(c.residual_rms_after_mps2, 2.0 * r.residual_rms_after_mps2);
+}
+
+TEST(Solve, ChoosesNoDriftWhereThereIsNone) {
+  std::mt19937_64 rng(42);
+  int chosen = 0;
+  int tested = 0;
+  SolveOptions options;
+  options.cross_validate = false;
+  options.split_half_check = false;
+  for (int s = 0; s < 100; ++s) {
+    const SolveResult r =
+        Solve(DriftingSession(Eigen::Vector3d::Zero(), rng).positions, options);
+    chosen += r.bias_drift.has_value();
+    tested += r.bias_drift_p_value.has_value();
+  }
+  EXPECT_EQ(tested, 100);
+  // Binomial(100, 0.01): 1 expected, 5 or more with probability 0.3 %.
+  EXPECT_LE(chosen, 4);
+}
+
+}  // namespace
+}  // namespace mpcal

@@ -1,0 +1,111 @@
+// The split-half check inside the fit (METHOD.md §9): two halves of one
+// session calibrated alone must agree within their combined 1σ.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "mpcal/solve.h"
+#include "synthetic_positions.h"
+
+namespace mpcal {
+namespace {
+
+using testing::ConsumerGrade;
+using testing::CubeDirections;
+using testing::MakeSession;
+using testing::Tilted;
+
+const Eigen::Vector3d kNoise(0.02, 0.025, 0.03);  // m/s² per sample
+constexpr std::size_t kSamples = 1000;
+
+// The 26 cube directions twice, in two rounds: each half by time and each
+// alternate half holds every direction.
+std::vector<Eigen::Vector3d> TwoRounds() {
+  std::vector<Eigen::Vector3d> d = CubeDirections();
+  const std::vector<Eigen::Vector3d> again = CubeDirections();
+  d.insert(d.end(), again.begin(), again.end());
+  return d;
+}
+
+TEST(SplitHalf, HalvesOfAWhiteNoiseSessionAgree) {
+  std::mt19937_64 rng(31);
+  int disagreeing = 0;
+  double sum_sq = 0.0;
+  int values = 0;
+  constexpr int kSessions = 20;
+  for (int s = 0; s < kSessions; ++s) {
+    const auto session = MakeSession(
+        ConsumerGrade(), Tilted(TwoRounds(), 0.1, rng), kNoise, kSamples, rng);
+    SolveOptions options;
+    options.cross_validate = false;
+    const SolveResult r = Solve(session.positions, options);
+    ASSERT_TRUE(r.split_half.has_value());
+    ASSERT_EQ(r.split_half->comparisons.size(), 2u);
+    for (const SplitHalfComparison& c : r.split_half->comparisons) {
+      ASSERT_TRUE(c.determined);
+      EXPECT_EQ(c.positions_first, 26);
+      EXPECT_EQ(c.positions_second, 26);
+      ASSERT_EQ(c.z.size(), 9u);
+      disagreeing += c.disagree;
+      for (double z : c.z) sum_sq += z * z;
+      values += 9;
+    }
+  }
+  // 360 values of z: RMS 1 ± 0.04 for honest 1σ (±0.15 allows for the
+  // correlation of the nine parameters of one split).
+  EXPECT_NEAR(std::sqrt(sum_sq / values), 1.0, 0.15);
+  // 40 tests at 1 %: 0.4 expected, 3 or more with probability 0.8 %.
+  EXPECT_LE(disagreeing, 2);
+}
+
+TEST(SplitHalf, ABiasThatJumpsBetweenTheHalvesWidensThe1Sigma) {
+  std::mt19937_64 rng(32);
+  auto session =
+      MakeSession(ConsumerGrade(), Tilted(TwoRounds(), 0.1, rng), kNoise, kSamples, rng);
+  // The second round's readings offset by ten times the noise of a mean.
+  const double sigma_mean = kNoise.norm() / std::sqrt(3.0 * kSamples);
+  for (std::size_t k = 26; k < session.positions.size(); ++k) {
+    session.positions[k].mean_mps2 += Eigen::Vector3d(10.0 * sigma_mean, 0.0, 0.0);
+  }
+  SolveOptions plain;
+  plain.cross_validate = false;
+  plain.split_half_check = false;
+  SolveOptions checked = plain;
+  checked.split_half_check = true;
+  const SolveResult without = Solve(session.positions, plain);
+  const SolveResult with = Solve(session.positions, checked);
+  ASSERT_TRUE(with.split_half.has_value());
+  const SplitHalfComparison& by_time = with.split_half->comparisons[0];
+  ASSERT_EQ(by_time.kind, SplitKind::kByTime);
+  ASSERT_TRUE(by_time.determined);
+  EXPECT_TRUE(by_time.disagree);
+  EXPECT_GT(std::abs(by_time.z[0]), 4.0);  // bias x
+  const double widening = with.split_half->widening;
+  EXPECT_GE(widening, std::sqrt(by_time.chi2 / by_time.dof) * (1 - 1e-12));
+  EXPECT_GT(widening, 1.5);
+  // The estimate is the same; every 1σ is widened by the factor.
+  EXPECT_NEAR(with.estimate.bias_mps2.x(), without.estimate.bias_mps2.x(), 1e-12);
+  const auto ratio = ToVector(with.std).cwiseQuotient(ToVector(without.std));
+  for (int i = 0; i < 9; ++i) EXPECT_NEAR(ratio[i], widening, 1e-9 * widening);
+  ASSERT_FALSE(with.warnings.empty());
+  EXPECT_NE(with.warnings.back().find("widened"), std::string::npos);
+}
+
+TEST(SplitHalf, NotPossibleWhenAHalfCannotDetermineTheModel) {
+  std::mt19937_64 rng(33);
+  std::vector<Eigen::Vector3d> directions = CubeDirections();
+  directions.resize(14);
+  const auto session =
+      MakeSession(ConsumerGrade(), Tilted(directions, 0.1, rng), kNoise, kSamples, rng);
+  const SolveResult r = Solve(session.positions, SolveOptions{});
+  ASSERT_TRUE(r.split_half.has_value());
+  for (const SplitHalfComparison& c : r.split_half->comparisons) {
+    EXPECT_FALSE(c.determined);
+    EXPECT_TRUE(c.z.empty());
+  }
+  EXPECT_EQ(r.split_half->widening, 1.0);
+}
+
+}  // namespace
+}  // namespace mpcal
