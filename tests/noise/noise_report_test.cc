@@ -13,7 +13,7 @@
 namespace mpcal {
 namespace {
 
-using testing::HasSubstr;
+using ::testing::HasSubstr;
 
 std::size_t Count(const std::string& s, const std::string& what) {
   std::size_t n = 0;
@@ -36,8 +36,8 @@ TEST(NoiseReport, SectionHasTheTableAndALogLogPlotPerAxis) {
   EXPECT_THAT(section, HasSubstr("sum of the fitted terms"));
   EXPECT_THAT(section, HasSubstr("not measured: &lt; "));  // the random walk of 3 minutes
   EXPECT_THAT(section, HasSubstr("\u00b5g/\u221aHz"));
-  EXPECT_THAT(section, testing::Not(HasSubstr("nan")));
-  EXPECT_THAT(section, testing::Not(HasSubstr("inf\"")));
+  EXPECT_THAT(section, ::testing::Not(HasSubstr("nan")));
+  EXPECT_THAT(section, ::testing::Not(HasSubstr("inf\"")));
 }
 
 }  // namespace
