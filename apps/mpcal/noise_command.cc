@@ -2,6 +2,7 @@
 // supports (each with its interval), how long to record for those it does
 // not, and the files filters want (JSON, Kalibr's imu.yaml).
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <optional>
 #include <string>
@@ -234,6 +235,7 @@ void Run(NoiseFlags& f) {
   if (!f.kalibr.empty()) {
     const KalibrFile k = KalibrYaml(r, f.input, f.rostopic);
     WriteFileAtomically(f.kalibr, k.text);
+    std::fflush(stdout);  // the warnings after the table, also when piped
     for (const auto& [name, v] :
          {std::pair{"accelerometer_random_walk", k.accel_random_walk},
           std::pair{"gyroscope_random_walk", k.gyro_random_walk},

@@ -26,9 +26,13 @@ import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-# (hours, rate_hz, seed): 2-8 h, 50-400 Hz; 25 M rows in all.
-CASES = [(2, 50, 1), (2, 100, 2), (2, 400, 3), (3, 200, 4), (4, 50, 5), (4, 100, 6),
-         (5, 200, 7), (6, 50, 8), (8, 100, 9), (8, 50, 10), (3, 400, 11), (6, 100, 12)]
+# (hours, rate_hz, seed, walk): 2-8 h, 50-400 Hz, 15 M rows in all. With
+# walk, the random walks are given (consumer-grade figures) so that a record
+# of a few hours shows them; without, gen_still.py draws every term itself
+# (its random walks mostly need days: those cases check the bounds).
+WALK = ['--accel-random-walk', '4e-5', '--gyro-random-walk', '2e-6']
+CASES = [(2, 100, 2, True), (3, 400, 3, True), (4, 200, 5, True), (2, 50, 1, False),
+         (6, 100, 6, True), (4, 50, 4, False), (8, 100, 8, True), (8, 50, 7, False)]
 KEYS = {'accel': ('accelerometer', 'mps2_per_sqrt_hz', 'white_noise_mps2_per_rthz',
                   'mps3_per_sqrt_hz', 'random_walk_mps3_per_rthz', 'mps2', 'bias_instability_mps2'),
         'gyro': ('gyroscope', 'radps_per_sqrt_hz', 'white_noise_radps_per_rthz',
@@ -36,11 +40,11 @@ KEYS = {'accel': ('accelerometer', 'mps2_per_sqrt_hz', 'white_noise_mps2_per_rth
                  'bias_instability_radps')}
 
 
-def run_case(mpcal, work, hours, rate, seed):
+def run_case(mpcal, work, hours, rate, seed, walk):
     out = os.path.join(work, 'h%g_r%g_s%d' % (hours, rate, seed))
     subprocess.run([sys.executable, os.path.join(HERE, 'gen_still.py'), '--out', out,
-                    '--hours', str(hours), '--rate', str(rate), '--seed', str(seed)],
-                   check=True, stdout=subprocess.DEVNULL)
+                    '--hours', str(hours), '--rate', str(rate), '--seed', str(seed)] +
+                   (WALK if walk else []), check=True, stdout=subprocess.DEVNULL)
     with open(os.path.join(out, 'truth.json')) as f:
         truth = json.load(f)
     subprocess.run([mpcal, 'noise', os.path.join(out, 'still.csv'), '--json',
@@ -59,10 +63,10 @@ def main():
     a = ap.parse_args()
     work = a.keep or tempfile.mkdtemp(prefix='mpcal_noise_study.')
     n_worst, k_in, k_measured, k_bound_ok, k_not, b_ok, b_measured, n_axes = 0.0, 0, 0, 0, 0, 0, 0, 0
-    print('%-14s %-6s %9s %9s %s' % ('record', 'axis', 'N err %', 'K', 'B'))
+    print('%-16s %-8s %9s %10s %s' % ('record', 'axis', 'N err %', 'K/truth', 'B/truth'))
     try:
-        for hours, rate, seed in CASES[:a.cases]:
-            truth, result = run_case(a.mpcal, work, hours, rate, seed)
+        for hours, rate, seed, walk in CASES[:a.cases]:
+            truth, result = run_case(a.mpcal, work, hours, rate, seed, walk)
             for sensor, (name, tn, rn, tk, rk, tb, rb) in KEYS.items():
                 for i, axis in enumerate('xyz'):
                     ax = result[name]['axes'][axis]
@@ -90,7 +94,7 @@ def main():
                         ok = b['lo'] <= b_true <= b['hi'] or abs(b['value'] / b_true - 1) <= 0.25
                         b_ok += ok
                         b_text = '%s %.2f' % ('ok' if ok else 'OFF', b['value'] / b_true)
-                    print('%-14s %-6s %+9.2f %9s %s' % ('%gh %gHz s%d' % (hours, rate, seed),
+                    print('%-16s %-8s %+9.2f %10s %s' % ('%gh %gHz s%d%s' % (hours, rate, seed, ' K' if walk else ''),
                                                        sensor + ' ' + axis, n_err, k_text, b_text))
     finally:
         if not a.keep:

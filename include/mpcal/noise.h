@@ -9,11 +9,12 @@
 ///
 ///     σ²(τ) = Σ_k (θ_{k+2m} − 2θ_{k+m} + θ_k)² / (2 m² K),
 ///
-/// summed over K start indices k (all of them for m ≤ AllanOptions::
-/// full_overlap_max_m, else every d-th, d = ⌊m / min_overlaps⌋: at least
-/// `min_overlaps` starts per cluster width, where further overlap adds no
-/// information). The cluster times are log-spaced, `points_per_octave` a
-/// factor of two, up to `max_tau_fraction` of the record.
+/// summed over K start indices k: all of them for m < 2·min_overlaps, else
+/// every d-th, d = ⌊m / min_overlaps⌋, so at least `min_overlaps` starts per
+/// cluster width (beyond a few, more overlap adds next to no information:
+/// the EDF of the overlapping estimator is reached; Riley 2008 §5.2.4). The
+/// cluster times are log-spaced, `points_per_octave` a factor of two, up to
+/// `max_tau_fraction` of the record.
 ///
 /// Confidence intervals are χ² intervals with the equivalent degrees of
 /// freedom of the overlapping estimator from the approximations of Howe,
@@ -79,8 +80,8 @@ struct AllanOptions {
   /// 2 degrees of freedom at 0.25; larger is mostly noise).
   double max_tau_fraction = 0.25;
   /// Start indices per cluster width for large m (see the file comment);
-  /// the estimator is fully overlapping for m ≤ this.
-  int min_overlaps = 64;
+  /// the estimator is fully overlapping for m < 2 × this.
+  int min_overlaps = 16;
   /// Two-sided confidence level of every interval (curve and terms).
   double confidence = 0.95;
 

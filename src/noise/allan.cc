@@ -23,10 +23,20 @@ namespace {
 // of them instead of once per τ.
 constexpr std::int64_t kBlockRows = 4096;
 
+// The two kernels take nearly all the time of an analysis: built for AVX2
+// as well as the baseline, the better one chosen at load time (GCC
+// function multiversioning), so the portable build runs at the speed of a
+// -march=native one.
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+#define MPCAL_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define MPCAL_VECTOR_CLONES
+#endif
+
 // Σ_{k ∈ [k0, k1)} (θ_{k+2m} − 2θ_{k+m} + θ_k)² per axis, θ as 3 doubles a
 // row. Twelve partial sums (four rows of three axes) let the compiler keep
 // them in vector registers; the axis of lane j is j mod 3.
-void SecondDifferenceSquares(const double* theta,
+MPCAL_VECTOR_CLONES void SecondDifferenceSquares(const double* theta,
                              std::int64_t k0,
                              std::int64_t k1,
                              std::int64_t m,
@@ -50,8 +60,8 @@ void SecondDifferenceSquares(const double* theta,
   for (int j = 0; j < 12; ++j) out[j % 3] += acc[j];
 }
 
-// The same over start indices k0, k0 + d, ... < k1.
-void StridedSecondDifferenceSquares(const double* theta,
+// The same over start indices 0, d, 2d, ... < k1.
+MPCAL_VECTOR_CLONES void StridedSecondDifferenceSquares(const double* theta,
                                     std::int64_t k1,
                                     std::int64_t m,
                                     std::int64_t d,
@@ -180,8 +190,9 @@ CumulativeSums3 CumulativeSums3::FromSamples(std::vector<Eigen::Vector3d>&& samp
       for (int j = 0; j < 3; ++j) run[j] += y[j] - mean[j];
     }
   }
+  // No shrink_to_fit: it would copy the whole vector to give back the spare
+  // capacity, doubling memory for a moment.
   samples.resize(count + 1);
-  samples.shrink_to_fit();
   out.theta_ = std::move(samples);
   out.sample_period_s_ = sample_period_s;
   out.mean_si_ = Eigen::Vector3d(static_cast<double>(mean[0] * si_per_unit),
