@@ -531,19 +531,31 @@ struct ScannerState {
     return i == text.size() || text[i] == '#' || text[i] == '%';
   }
 
-  // A line of at least 3 numbers, whatever separates them.
-  static bool IsNumberRow(std::string_view text) {
+  // Fields of a line whatever separates them, and how many are numbers.
+  static std::pair<std::size_t, std::size_t> CountFields(std::string_view text) {
     std::size_t fields = 0;
+    std::size_t numbers = 0;
     std::size_t i = 0;
     while (i < text.size()) {
       while (i < text.size() && std::strchr(",; \t\r", text[i]) != nullptr) ++i;
       const std::size_t start = i;
       while (i < text.size() && std::strchr(",; \t\r", text[i]) == nullptr) ++i;
       if (i == start) break;
-      if (!ParsesAsNumber(text.substr(start, i - start), '.')) return false;
       ++fields;
+      if (ParsesAsNumber(text.substr(start, i - start), '.')) ++numbers;
     }
-    return fields >= 3;
+    return {fields, numbers};
+  }
+  // A line of at least 3 numbers and nothing else.
+  static bool IsNumberRow(std::string_view text) {
+    const auto [fields, numbers] = CountFields(text);
+    return fields >= 3 && numbers == fields;
+  }
+  // A data row with a bad field ("0.2,4,abc,5"): mostly numbers. Such a line
+  // before the data is a log's own error, never boot text to skip.
+  static bool IsMostlyNumbers(std::string_view text) {
+    const auto [fields, numbers] = CountFields(text);
+    return fields >= 3 && 2 * numbers >= fields;
   }
 
   // Serial boot text before the header ("Initializing I2C devices...", a
@@ -596,6 +608,15 @@ struct ScannerState {
       if (header) start = data - 1;
     }
     if (start == 0 && noise_lines == 0) return;
+    bool at_header = start < data;
+    for (std::size_t i = first; i < start; ++i) {
+      if (IsMostlyNumbers((*lines)[i].text)) {
+        start = first;
+        at_header = false;
+        break;
+      }
+    }
+    if (start == 0 && noise_lines == 0) return;
     const std::size_t start_line = (*lines)[start].line;
     // Bytes of the lines before start_line, from the unconsumed start.
     std::size_t pos = begin;
@@ -606,7 +627,7 @@ struct ScannerState {
     skipped_lines = start_line - 1;
     skipped_bytes = pos;
     lines->erase(lines->begin(), lines->begin() + start);
-    WarnSkipped(start_line, start < data);
+    if (skipped_lines > 0) WarnSkipped(start_line, at_header);
   }
 
   void WarnSkipped(std::size_t start_line, bool header) {

@@ -31,7 +31,7 @@ foreach(_case
     "version2|this mpcal reads version 1"
     "missing_bias|missing field 'bias_mps2'"
     "model|unknown model 'twelve-parameter'"
-    "scale|'input.mps2_per_unit' must be positive"
+    "scale|'input.mps2_per_unit' = -1 is not a sensor's scale"
     "nan|not valid JSON: parse error at line 4, column"
     "syntax|not valid JSON: .*line 22"
     "type|'gravity_mps2' must be a number, found a string")

@@ -174,7 +174,7 @@ set(output_cases
   fd_link       0 "exit 0"
   stdout        0 "exit 0"
   empty         2 "the file name is empty"
-  stdout_full   1 "error writing to standard output: No space left on device"
+  stdout_full   1 "error writing to standard output"
   stdout_closed 1 "standard output is closed")
 function(output_cases command)
   list(LENGTH output_cases n)
@@ -268,7 +268,7 @@ shell_case(bad_calibrate_huge_row_1e308 1
 shell_case(bad_detect_huge_row_1e20 1
   "huge.csv:200: reading '1e20' in column 'az' \\(index 3\\) is beyond any accelerometer's range"
   "sed '200s/,[^,]*$/,1e20/' '${_session}' > huge.csv && exec \"$0\" detect huge.csv")
-shell_case(bad_calibrate_huge_times 1 "a time of 1e\\+300 s is beyond any logger's clock"
+shell_case(bad_calibrate_huge_times 1 "a time of [0-9.]+e\\+30[0-9] s is beyond any logger's clock"
   "awk -F, 'NR==1{print;next}{$1=$1*1e300; print}' OFS=, '${_session}' > t.csv && exec \"$0\" calibrate t.csv")
 
 # Absurd but finite values in a calibration file (issue 14: a bias of

@@ -291,9 +291,9 @@ TEST(CalibrationFile, UnknownModelAndUnits) {
 TEST(CalibrationFile, ImplausibleValues) {
   nlohmann::json j = ValidJson();
   j["input"]["mps2_per_unit"] = 0.0;
-  EXPECT_THAT(FromJsonError(j.dump()), HasSubstr("must be positive"));
+  EXPECT_THAT(FromJsonError(j.dump()), HasSubstr("is not a sensor's scale"));
   j["input"]["mps2_per_unit"] = -1.0;
-  EXPECT_THAT(FromJsonError(j.dump()), HasSubstr("must be positive"));
+  EXPECT_THAT(FromJsonError(j.dump()), HasSubstr("is not a sensor's scale"));
   j = ValidJson();
   j["input"] = {{"units", "g"}, {"mps2_per_unit", 1.0}};
   EXPECT_THAT(FromJsonError(j.dump()), HasSubstr("9.80665"));

@@ -515,7 +515,7 @@ TEST(ReadLog, SerialBootTextBeforeTheHeaderIsSkippedWithAWarning) {
   const std::string good = log.substr(0, log.find("1200,"));
   const Recording r = ReadLog(dir.Write("good.txt", good), {});
   ASSERT_EQ(r.size(), 20u);
-  EXPECT_DOUBLE_EQ(r.time_s[1] - r.time_s[0], 0.01);  // `millis`: ms from the name
+  EXPECT_NEAR(r.time_s[1] - r.time_s[0], 0.01, 1e-12);  // `millis`: ms from the name
   EXPECT_THAT(r.warnings, ::testing::Contains(HasSubstr(
                               "skipped 3 lines before the header (serial boot text or a "
                               "title); the header starts on line 4")));
@@ -528,7 +528,7 @@ TEST(ReadLog, TimeUnitFromTheColumnName) {
     std::string log = std::string(name) + ",ax,ay,az\n";
     for (int i = 0; i < 10; ++i) log += std::to_string(5 * i) + ",0,0,9.8\n";
     const Recording r = Read(dir, log);
-    EXPECT_DOUBLE_EQ(r.time_s[1] - r.time_s[0], 5 * step) << name;
+    EXPECT_NEAR(r.time_s[1] - r.time_s[0], 5 * step, 1e-12) << name;
   }
 }
 
@@ -540,7 +540,7 @@ TEST(ReadLog, AnIndexSteppingByOneAsksForTheRate) {
               HasSubstr("steps by exactly 1 on every row: it is a sample index, not a time"));
   LogOptions with_rate;
   with_rate.rate_hz = 100.0;
-  EXPECT_DOUBLE_EQ(Read(dir, log, with_rate).time_s[1], 0.01);
+  EXPECT_NEAR(Read(dir, log, with_rate).time_s[1], 0.01, 1e-12);
 }
 
 TEST(ReadLog, ImpossibleReadingIsAnErrorNamingTheLine) {
@@ -553,7 +553,7 @@ TEST(ReadLog, ImpossibleReadingIsAnErrorNamingTheLine) {
   EXPECT_THAT(ReadError(dir, counts, WithUnits(AccelUnits::kG)), HasSubstr("beyond"));
   EXPECT_EQ(Read(dir, counts, WithUnits(AccelUnits::kCounts)).size(), 2u);
   EXPECT_THAT(ReadError(dir, "t,ax,ay,az\n1e300,0,0,9.8\n2e300,0,0,9.8\n"),
-              HasSubstr("a time of 2e+300 s is beyond any logger's clock"));
+              HasSubstr("a time of 1e+300 s is beyond any logger's clock"));
 }
 
 }  // namespace
