@@ -163,6 +163,14 @@ void AddCalibrateCommand(CLI::App& root) {
       ->capture_default_str()
       ->check(NonNegativeNumber)
       ->group("Gyroscope");
+  const std::vector<std::pair<std::string, GSensitivity>> g_modes{
+      {"auto", GSensitivity::kAuto}, {"on", GSensitivity::kOn}, {"off", GSensitivity::kOff}};
+  app->add_option("--gyro-g-sensitivity", flags->calibrate.gyro.g_sensitivity,
+                  "Model the gyroscope bias's sensitivity to specific force (b = b0 + G f) "
+                  "from the positions: auto (when the biases show it), on or off")
+      ->transform(OneOf(g_modes))
+      ->default_str("auto")
+      ->group("Gyroscope");
   AddGravityOptions(*app, flags->gravity);
   AddCalibrateOptions(*app, flags->calibrate);
   app->footer(

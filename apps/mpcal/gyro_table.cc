@@ -57,6 +57,14 @@ std::string FormatGyroTable(const GyroCalibration& g, const GyroCalibration* ext
         g.position_bias.size(), change.x() * kDegPerRad, change.y() * kDegPerRad,
         change.z() * kDegPerRad);
   }
+  if (g.g_sensitivity_radps_per_mps2) {
+    // deg/s per g, rows x, y, z.
+    const Eigen::Matrix3d gs = *g.g_sensitivity_radps_per_mps2 * kDegPerRad * kStandardGravityMps2;
+    out += fmt::format(
+        "bias g-sensitivity G (deg/s per g; bias = b + G f, the bias above without G f): "
+        "[{:.4f} {:.4f} {:.4f}; {:.4f} {:.4f} {:.4f}; {:.4f} {:.4f} {:.4f}]\n",
+        gs(0, 0), gs(0, 1), gs(0, 2), gs(1, 0), gs(1, 1), gs(1, 2), gs(2, 0), gs(2, 1), gs(2, 2));
+  }
   if (g.input_units == GyroUnits::kCounts) {
     out += fmt::format(
         "gyroscope readings in counts, scaled by the nominal {:.6g} rad/s per count (bias x, "
@@ -78,8 +86,11 @@ std::string FormatGyroSummary(const GyroResult& r) {
       f.residual_rms_after_rad * kDegPerRad);
   out += fmt::format(
       "gyroscope quality: variance factor {:.3g} (1 = turn residuals as the gyroscope and "
-      "accelerometer noise explain); noise at rest {:.3g} deg/s per sample\n",
-      f.variance_factor, f.noise_std_radps * kDegPerRad);
+      "accelerometer noise explain); noise at rest {:.3g} deg/s per sample; bias "
+      "g-sensitivity {} (F = {:.3g})\n",
+      f.variance_factor, f.noise_std_radps * kDegPerRad,
+      r.calibration.g_sensitivity_radps_per_mps2 ? "modelled" : "not modelled",
+      r.g_sensitivity_f);
   if (!r.converged()) out += fmt::format("gyroscope solver: {}\n", r.message);
   return out;
 }

@@ -191,12 +191,15 @@ void Run(const SimulateStaticFlags& f) {
                         : fmt::format(" and the true errors to {}", f.truth));
     if (!to_stdout) {
       fmt::print(summary,
-                 "Calibrate it with: mpcal calibrate {} --units {}{} -o calib.json\n",
+                 "Calibrate it with: mpcal calibrate {} --units {}{}{} -o calib.json\n",
                  f.output,
                  units,
                  f.gravity.gravity_mps2 || f.gravity.latitude_deg
                      ? fmt::format(" --gravity {:.5f}", gravity)
-                     : std::string());
+                     : std::string(),
+                 options.gyro && options.gyro_units == GyroUnits::kCounts
+                     ? " --gyro-units counts"
+                     : "");
     }
     return;
   }

@@ -62,13 +62,16 @@ class GyroCorrector {
   /// 	hrows mpcal::Error when the calibration is for raw counts and the
   ///   log is not (or the other way round).
   GyroCorrector(const GyroCalibration& gyro, GyroUnits log_units, GyroUnits out_units);
-  Eigen::Vector3d operator()(const Eigen::Vector3d& reading) const {
-    return matrix_ * reading - offset_;
+  /// `f_mps2`: the specific force at that sample (m/s²), for the bias's
+  /// g-sensitivity when the calibration models it.
+  Eigen::Vector3d operator()(const Eigen::Vector3d& reading, const Eigen::Vector3d& f_mps2) const {
+    return matrix_ * reading - offset_ - g_term_ * f_mps2;
   }
 
  private:
   Eigen::Matrix3d matrix_;
   Eigen::Vector3d offset_;
+  Eigen::Matrix3d g_term_ = Eigen::Matrix3d::Zero();
 };
 
 struct ApplyOptions {

@@ -70,13 +70,26 @@ struct GyroCalibration {
   /// Covariance of the 9 entries of M, row-major (m_xx, m_xy, m_xz, m_yx, …);
   /// nullopt for a truth file.
   std::optional<Eigen::Matrix<double, 9, 9>> m_covariance;
-  /// The bias at every static position, in time order; empty for a truth.
+  /// The bias at every static position (as measured, G f included), in
+  /// time order; empty for a truth.
   std::vector<GyroBiasSample> position_bias;
+  /// g-sensitivity G of the bias (rad/s per m/s², nominal units) when
+  /// modelled: ω = M (r · radps_per_unit − b − G f), f the specific force
+  /// (m/s²), and `bias_radps` is then the part of the bias without G f.
+  std::optional<Eigen::Matrix3d> g_sensitivity_radps_per_mps2;
   std::optional<GyroFitSummary> fit;
 
-  /// Angular rate (rad/s) from a reading in `input_units`.
+  /// Angular rate (rad/s) from a reading in `input_units` (without the
+  /// g-sensitivity term; see the overload).
   Eigen::Vector3d Correct(const Eigen::Vector3d& reading) const {
     return m * (reading * radps_per_unit - bias_radps);
+  }
+  /// The same with the specific force `f_mps2` sensed at that sample, for
+  /// the g-sensitivity when it is modelled.
+  Eigen::Vector3d Correct(const Eigen::Vector3d& reading, const Eigen::Vector3d& f_mps2) const {
+    Eigen::Vector3d b = bias_radps;
+    if (g_sensitivity_radps_per_mps2) b += *g_sensitivity_radps_per_mps2 * f_mps2;
+    return m * (reading * radps_per_unit - b);
   }
   /// 1σ of each entry of M (row-major 3×3); zero without a covariance.
   Eigen::Matrix3d MStd() const {

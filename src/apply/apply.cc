@@ -184,6 +184,9 @@ GyroCorrector::GyroCorrector(const GyroCalibration& gyro, GyroUnits log_units,
   const double out_per_radps = 1.0 / *FixedRadpsPerUnit(out_units);
   matrix_ = gyro.m * (in_radps * out_per_radps);
   offset_ = gyro.m * gyro.bias_radps * out_per_radps;
+  if (gyro.g_sensitivity_radps_per_mps2) {
+    g_term_ = gyro.m * *gyro.g_sensitivity_radps_per_mps2 * out_per_radps;
+  }
   if (!matrix_.allFinite() || !offset_.allFinite()) {
     throw Error("the calibration's gyroscope model is not finite");
   }
@@ -264,7 +267,8 @@ ApplyResult ApplyCalibration(const Calibration& calibration, const std::string& 
         // Replace the numbers (accelerometer, then gyroscope: indices 3-5)
         // in the order they appear on the line.
         Eigen::Matrix<double, 6, 1> values;
-        values << a, correct_gyro ? (*correct_gyro)(line.gyro) : Eigen::Vector3d::Zero();
+        values << a, correct_gyro ? (*correct_gyro)(line.gyro, a * mps2_per_out)
+                                  : Eigen::Vector3d::Zero();
         auto span = [&](int i) { return i < 3 ? line.accel_span[i] : line.gyro_span[i - 3]; };
         std::array<int, 6> order = {0, 1, 2, 3, 4, 5};
         const int count = correct_gyro ? 6 : 3;

@@ -200,6 +200,18 @@ std::string_view ToString(GyroFindingKind kind) {
   return "unknown";
 }
 
+std::string_view ToString(GSensitivity mode) {
+  switch (mode) {
+    case GSensitivity::kOff:
+      return "off";
+    case GSensitivity::kAuto:
+      return "auto";
+    case GSensitivity::kOn:
+      return "on";
+  }
+  return "unknown";
+}
+
 std::string_view ToString(GyroStatus status) {
   switch (status) {
     case GyroStatus::kConverged:
@@ -218,8 +230,22 @@ GyroResult CalibrateGyroscope(const Recording& recording,
   if (const std::string problem = options.Validate(); !problem.empty()) {
     throw Error("gyroscope options: " + problem);
   }
+  // The nominal scale is needed to carry the directions to the turns' ends:
+  // for raw counts it is found first from a problem without that carrying.
+  double carry_scale = options.radps_per_unit;
+  if (!(carry_scale > 0.0)) {
+    if (const auto fixed = FixedRadpsPerUnit(recording.gyro_units)) carry_scale = *fixed;
+  }
+  if (!(carry_scale > 0.0)) {
+    const TurnProblem first = internal::BuildTurnProblem(
+        recording, intervals, accel, options.direction_window_s, options.g_sensitivity,
+        options.g_sensitivity_min_f, 0.0);
+    bool unused = false;
+    if (first.turns.size() >= 5) carry_scale = ResolveScale(recording, options, first, &unused);
+  }
   const TurnProblem problem =
-      internal::BuildTurnProblem(recording, intervals, accel, options.direction_window_s);
+      internal::BuildTurnProblem(recording, intervals, accel, options.direction_window_s,
+                                 options.g_sensitivity, options.g_sensitivity_min_f, carry_scale);
   GyroResult result;
   GyroCalibration& c = result.calibration;
   c.input_units = recording.gyro_units;
@@ -324,7 +350,11 @@ GyroResult CalibrateGyroscope(const Recording& recording,
   Eigen::Vector3d spread = Eigen::Vector3d::Zero();
   for (const auto& b : c.position_bias) spread += (b.bias_radps - mean).cwiseAbs2();
   const double n = static_cast<double>(c.position_bias.size());
-  c.bias_radps = mean;
+  c.bias_radps = problem.g_sensitivity_used ? (problem.bias_without_g_raw * scale).eval() : mean;
+  if (problem.g_sensitivity_used) {
+    c.g_sensitivity_radps_per_mps2 = problem.g_sensitivity_raw_per_mps2 * scale;
+  }
+  result.g_sensitivity_f = problem.g_sensitivity_f;
   c.bias_std_radps = (spread / std::max(n - 1.0, 1.0) / n).cwiseSqrt();
 
   GyroFitSummary fit;
@@ -351,7 +381,10 @@ Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const Recording& recording,
                                                const Calibration& accel,
                                                const GyroCalibration& truth) {
   const TurnProblem problem =
-      internal::BuildTurnProblem(recording, intervals, accel, GyroOptions().direction_window_s);
+      internal::BuildTurnProblem(recording, intervals, accel, GyroOptions().direction_window_s,
+                                 truth.g_sensitivity_radps_per_mps2 ? GSensitivity::kOn
+                                                                    : GSensitivity::kOff,
+                                 GyroOptions().g_sensitivity_min_f, truth.radps_per_unit);
   const double scale = truth.radps_per_unit;
   const Eigen::MatrixXd j = WhitenedJacobian(problem, truth.m * scale, scale);
   const Eigen::MatrixXd information = j.transpose() * j;

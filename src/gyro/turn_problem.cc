@@ -49,10 +49,15 @@ PositionGyro GyroAt(const Recording& rec, const StaticInterval& in) {
   return p;
 }
 
-// The direction over `window_s` at the end (or start) of a position, and
-// the variance of each of its tangent components added to `*variance`.
+// The direction over `window_s` at the end (or start) of a position, in the
+// body frame of its last (first) sample, and the variance of each of its
+// tangent components added to `*variance`. The hand sways slowly while it
+// holds a position; with `radps_per_unit` > 0 each sample's specific force is
+// carried to that sample by the gyroscope (nominal scale, the position's
+// bias), so the mean is the direction where the turn's integration starts.
 Eigen::Vector3d EdgeDirection(const Recording& rec, const StaticInterval& in,
                               const Calibration& accel, double window_s, bool at_end,
+                              const Eigen::Vector3d& gyro_bias, double radps_per_unit,
                               double* variance) {
   const double edge_s = at_end ? rec.time_s[in.end - 1] - window_s : rec.time_s[in.begin] + window_s;
   std::size_t first = in.begin;
@@ -62,13 +67,29 @@ Eigen::Vector3d EdgeDirection(const Recording& rec, const StaticInterval& in,
   } else {
     while (last - 1 > first && rec.time_s[last - 1] > edge_s) --last;
   }
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (std::size_t i = first; i < last; ++i) mean += rec.accel[i];
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  const bool carry = radps_per_unit > 0.0 && !rec.gyro_radps.empty();
+  auto step = [&](std::size_t i) {  // rotation from sample i to i + 1
+    const Eigen::Vector3d w =
+        (0.5 * (rec.gyro_radps[i] + rec.gyro_radps[i + 1]) - gyro_bias) * radps_per_unit;
+    return ExpSO3(w * (rec.time_s[i + 1] - rec.time_s[i]));
+  };
+  Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
+  if (at_end) {
+    for (std::size_t i = last; i-- > first;) {  // r = R_{i, anchor}
+      if (carry && i + 1 < last) r = step(i) * r;
+      sum += r.transpose() * accel.Correct(rec.accel[i]);
+    }
+  } else {
+    for (std::size_t i = first; i < last; ++i) {  // r = R_{anchor, i}
+      if (carry && i > first) r = r * step(i - 1);
+      sum += r * accel.Correct(rec.accel[i]);
+    }
+  }
   const double n = static_cast<double>(last - first);
-  mean /= n;
   const Eigen::Vector3d std_mps2 = in.std * accel.mps2_per_unit;
   *variance += std_mps2.squaredNorm() / 3.0 / n / (accel.gravity_mps2 * accel.gravity_mps2);
-  return accel.Correct(mean).normalized();
+  return sum.normalized();
 }
 
 }  // namespace
@@ -79,7 +100,9 @@ double TurnData::Sigma(double radps_per_unit) const {
 }
 
 TurnProblem BuildTurnProblem(const Recording& rec, std::span<const StaticInterval> intervals,
-                             const Calibration& accel, double direction_window_s) {
+                             const Calibration& accel, double direction_window_s,
+                             GSensitivity g_sensitivity, double min_f,
+                             double carry_radps_per_unit) {
   if (rec.gyro_radps.size() != rec.size() || rec.empty()) {
     throw Error(fmt::format("{}: the log has no gyroscope readings", rec.source));
   }
@@ -123,6 +146,45 @@ TurnProblem BuildTurnProblem(const Recording& rec, std::span<const StaticInterva
   }
   problem.sample_period_s = Median(periods);
 
+  // g-sensitivity: the bias at rest regressed on the specific force (and
+  // time, so that a drift is not taken for it), b_j = c + G f_j + d t_j. Only
+  // the part of the bias that is not G f is interpolated across a turn; G f
+  // follows the specific force sample by sample.
+  Eigen::Matrix3d g_sens = Eigen::Matrix3d::Zero();
+  std::vector<Eigen::Vector3d> rest_bias;
+  for (const PositionGyro& p : gyro) rest_bias.push_back(p.mean);
+  constexpr std::size_t kMinPositionsForG = 15;
+  if (g_sensitivity != GSensitivity::kOff && intervals.size() >= kMinPositionsForG) {
+    const auto n = static_cast<Eigen::Index>(intervals.size());
+    Eigen::MatrixXd x(n, 5);
+    Eigen::MatrixXd y(n, 3);
+    const double t0 = gyro.front().centre_s;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const auto k = static_cast<std::size_t>(j);
+      x.row(j) << 1.0, accel.Correct(intervals[k].mean).transpose(), gyro[k].centre_s - t0;
+      y.row(j) = gyro[k].mean.transpose();
+    }
+    const Eigen::MatrixXd coef = x.colPivHouseholderQr().solve(y);  // 5 × 3
+    Eigen::MatrixXd x0(n, 2);
+    x0 << x.col(0), x.col(4);
+    const Eigen::MatrixXd coef0 = x0.colPivHouseholderQr().solve(y);
+    const double rss1 = (y - x * coef).squaredNorm();
+    const double rss0 = (y - x0 * coef0).squaredNorm();
+    // 9 more parameters (3 per axis), 3·(n − 5) residual degrees of freedom.
+    const double dof = 3.0 * static_cast<double>(n - 5);
+    problem.g_sensitivity_f = rss1 > 0.0 ? ((rss0 - rss1) / 9.0) / (rss1 / dof) : 0.0;
+    if (g_sensitivity == GSensitivity::kOn || problem.g_sensitivity_f > min_f) {
+      g_sens = coef.middleRows(1, 3).transpose();
+      problem.g_sensitivity_used = true;
+      for (std::size_t k = 0; k < gyro.size(); ++k) {
+        rest_bias[k] -= g_sens * accel.Correct(intervals[k].mean);
+      }
+    }
+  }
+  for (const auto& b : rest_bias) problem.bias_without_g_raw += b;
+  problem.bias_without_g_raw /= static_cast<double>(rest_bias.size());
+  problem.g_sensitivity_raw_per_mps2 = g_sens;
+
   const double var_sample = problem.noise_std_raw * problem.noise_std_raw;
   for (std::size_t k = 0; k + 1 < intervals.size(); ++k) {
     TurnData t;
@@ -132,10 +194,10 @@ TurnProblem BuildTurnProblem(const Recording& rec, std::span<const StaticInterva
     t.start_s = rec.time_s[t.begin];
     t.end_s = rec.time_s[t.end];
     if (direction_window_s > 0.0) {
-      t.u_from = EdgeDirection(rec, intervals[k], accel, direction_window_s, true,
-                               &t.direction_variance_rad2);
+      t.u_from = EdgeDirection(rec, intervals[k], accel, direction_window_s, true, gyro[k].mean,
+                               carry_radps_per_unit, &t.direction_variance_rad2);
       t.u_to = EdgeDirection(rec, intervals[k + 1], accel, direction_window_s, false,
-                             &t.direction_variance_rad2);
+                             gyro[k + 1].mean, carry_radps_per_unit, &t.direction_variance_rad2);
     } else {
       t.u_from = directions[k];
       t.u_to = directions[k + 1];
@@ -144,17 +206,22 @@ TurnProblem BuildTurnProblem(const Recording& rec, std::span<const StaticInterva
     const PositionGyro& a = gyro[k];
     const PositionGyro& b = gyro[k + 1];
     const double span_s = std::max(b.centre_s - a.centre_s, 1e-9);
-    auto bias_at = [&](double time_s, double* lambda) {
-      *lambda = std::clamp((time_s - a.centre_s) / span_s, 0.0, 1.0);
-      return ((1.0 - *lambda) * a.mean + *lambda * b.mean).eval();
+    const Eigen::Vector3d& bias_a = rest_bias[k];
+    const Eigen::Vector3d& bias_b = rest_bias[k + 1];
+    const bool with_g = g_sens.any();
+    auto bias_at = [&](std::size_t i, double* lambda) {
+      *lambda = std::clamp((rec.time_s[i] - a.centre_s) / span_s, 0.0, 1.0);
+      Eigen::Vector3d bias = (1.0 - *lambda) * bias_a + *lambda * bias_b;
+      if (with_g) bias += g_sens * accel.Correct(rec.accel[i]);
+      return bias;
     };
     t.steps.reserve(t.end - t.begin);
     double lambda_sum = 0.0;
     double l0 = 0.0;
-    Eigen::Vector3d w0 = rec.gyro_radps[t.begin] - bias_at(rec.time_s[t.begin], &l0);
+    Eigen::Vector3d w0 = rec.gyro_radps[t.begin] - bias_at(t.begin, &l0);
     for (std::size_t i = t.begin; i < t.end; ++i) {
       double l1 = 0.0;
-      const Eigen::Vector3d w1 = rec.gyro_radps[i + 1] - bias_at(rec.time_s[i + 1], &l1);
+      const Eigen::Vector3d w1 = rec.gyro_radps[i + 1] - bias_at(i + 1, &l1);
       const double dt = rec.time_s[i + 1] - rec.time_s[i];
       t.steps.push_back({w0 * dt, w1 * dt});
       lambda_sum += 0.5 * (l0 + l1);

@@ -12,6 +12,7 @@
 
 #include "mpcal/calibration.h"
 #include "mpcal/detect.h"
+#include "mpcal/gyro.h"
 #include "mpcal/gyro_calibration.h"
 #include "mpcal/recording.h"
 #include "rotation.h"
@@ -50,14 +51,26 @@ struct TurnProblem {
   /// and the median sample period (s).
   double noise_std_raw = 0.0;
   double sample_period_s = 0.0;
+  /// g-sensitivity of the bias (raw units per m/s²); zero when not estimated.
+  Eigen::Matrix3d g_sensitivity_raw_per_mps2 = Eigen::Matrix3d::Zero();
+  bool g_sensitivity_used = false;
+  /// F statistic of the regression of the biases on f (0: not computed).
+  double g_sensitivity_f = 0.0;
+  /// Mean over the positions of bias − G f (raw units).
+  Eigen::Vector3d bias_without_g_raw = Eigen::Vector3d::Zero();
 };
 
 /// \throws mpcal::Error when the recording has no gyroscope, fewer than two
 ///   positions are given, or a position lies outside the recording.
-/// `direction_window_s` as GyroOptions::direction_window_s.
+/// `direction_window_s` and `g_sensitivity` as in GyroOptions.
+/// `carry_radps_per_unit` > 0: the specific force of each sample of a
+/// direction window is carried by the gyroscope (at this nominal scale) to
+/// the window's edge, so that the hand's sway within it does not count.
 TurnProblem BuildTurnProblem(const Recording& recording,
                              std::span<const StaticInterval> intervals,
-                             const Calibration& accel, double direction_window_s);
+                             const Calibration& accel, double direction_window_s,
+                             GSensitivity g_sensitivity, double min_f,
+                             double carry_radps_per_unit);
 
 /// Residual of one turn (unwhitened, rad: the tilt components in the basis
 /// at u_to) at the effective matrix `m` applied to raw increments, and its

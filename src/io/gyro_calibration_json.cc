@@ -66,6 +66,10 @@ json GyroToJson(const GyroCalibration& g) {
   j["m"] = RowMajor(g.m, "m");
   j["bias_radps"] = Vec3(g.bias_radps, "bias_radps");
   j["bias_change_radps"] = Vec3(g.BiasChangeRadps(), "bias_change_radps");
+  if (g.g_sensitivity_radps_per_mps2) {
+    j["g_sensitivity_radps_per_mps2"] =
+        RowMajor(*g.g_sensitivity_radps_per_mps2, "g_sensitivity_radps_per_mps2");
+  }
   if (g.m_covariance) {
     json s;
     s["m"] = RowMajor(g.MStd(), "std.m");
@@ -121,6 +125,10 @@ GyroCalibration GyroFromJson(const JsonReader& r, const json& object) {
                        path, g.m.determinant()));
   }
   g.bias_radps = r.Vector(object, path, "bias_radps");
+  if (object.contains("g_sensitivity_radps_per_mps2")) {
+    g.g_sensitivity_radps_per_mps2 =
+        Matrix(Numbers(r, object, path, "g_sensitivity_radps_per_mps2", 9));
+  }
   if (object.contains("std")) {
     const json& s = r.Object(object, path, "std");
     if (s.contains("bias_radps")) g.bias_std_radps = r.Vector(s, path + ".std", "bias_radps");

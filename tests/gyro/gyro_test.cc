@@ -80,7 +80,7 @@ TEST(GyroTurns, TrueModelCarriesGravityAtNoiseLevelAndIdentityDoesNot) {
   const DetectResult d = DetectStatic(s.recording, {});
   ASSERT_GE(d.intervals.size(), 20u);
   const internal::TurnProblem p =
-      internal::BuildTurnProblem(s.recording, d.intervals, s.truth, 1.0);
+      internal::BuildTurnProblem(s.recording, d.intervals, s.truth, 1.0, GSensitivity::kOff, 5.0, 1.0);
   double truth_z2 = 0.0;
   double identity_rms = 0.0;
   for (const internal::TurnData& t : p.turns) {

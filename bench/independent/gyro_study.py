@@ -1,0 +1,106 @@
+#!/usr/bin/env python3
+"""mpcal's gyroscope estimates and their 1σ on sessions its simulator did not make.
+
+Generates accelerometer + gyroscope sessions with gen_imu_session.py (seeds
+S+1 .. S+N; written apart from src/simulate/), runs `mpcal calibrate` on each
+with the options the generator names for its log, and scores, for the 9
+entries of M (omega = M (raw - b), row-major, in the accelerometer's frame as
+both define it):
+
+  z          = (estimate - truth) / reported 1σ
+  error/CRB  = (estimate - truth) / the bound at the estimate, i.e. the
+               reported 1σ without the variance-factor inflation
+               ((JᵀWJ)⁻¹ of the turn residuals with their weights)
+
+PASS when every session calibrated its gyroscope, the RMS of z over all
+entries is within 0.8 - 1.25 and the RMS of error/CRB is at most 1.2.
+
+  gyro_study.py MPCAL_BINARY [--sessions N] [--seed-base S] [--workdir DIR]
+"""
+import argparse
+import concurrent.futures
+import contextlib
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+GENERATOR = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'gen_imu_session.py')
+NAMES = ['m_xx', 'm_xy', 'm_xz', 'm_yx', 'm_yy', 'm_yz', 'm_zx', 'm_zy', 'm_zz']
+PRIOR_DOF = 10.0  # the variance-factor rule of mpcal (gyro_solve.cc)
+
+
+def run_session(mpcal, seed, workdir):
+    out = os.path.join(workdir, 's%d' % seed)
+    subprocess.run([sys.executable, GENERATOR, '--out', out, '--seed', str(seed)],
+                   check=True, capture_output=True, text=True)
+    with open(os.path.join(out, 'truth.json')) as f:
+        truth = json.load(f)
+    calib = os.path.join(out, 'calib.json')
+    r = subprocess.run([mpcal, 'calibrate', os.path.join(out, 'session.csv'), '-o', calib] +
+                       truth['log']['mpcal_options'], capture_output=True, text=True)
+    if r.returncode != 0:
+        return seed, None, r.stderr.strip()
+    with open(calib) as f:
+        c = json.load(f)
+    g = c.get('gyroscope')
+    if g is None:
+        return seed, None, 'no gyroscope in the calibration: ' + r.stderr.strip()
+    fit = g['fit']
+    dof = 2 * fit['turns'] - 9
+    chi2 = fit['variance_factor'] * dof
+    inflation = math.sqrt(max(1.0, (PRIOR_DOF + chi2) / (PRIOR_DOF + dof)))
+    rows = []
+    for i, name in enumerate(NAMES):
+        err = g['m'][i] - truth['gyroscope']['M'][i]
+        sigma = g['std']['m'][i]
+        rows.append((name, err / sigma, err / (sigma / inflation)))
+    return seed, {'rows': rows, 'after_deg': math.degrees(fit['residual_rms_after_rad']),
+                  'vf': fit['variance_factor']}, ''
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument('mpcal')
+    ap.add_argument('--sessions', type=int, default=20)
+    ap.add_argument('--seed-base', type=int, default=1000)
+    ap.add_argument('--workdir')
+    args = ap.parse_args()
+    with contextlib.ExitStack() as stack:
+        workdir = args.workdir or stack.enter_context(tempfile.TemporaryDirectory())
+        os.makedirs(workdir, exist_ok=True)
+        seeds = [args.seed_base + i + 1 for i in range(args.sessions)]
+        with concurrent.futures.ThreadPoolExecutor(2) as pool:
+            results = list(pool.map(lambda s: run_session(args.mpcal, s, workdir), seeds))
+    failed = [(s, why) for s, res, why in results if res is None]
+    done = [res for s, res, why in results if res is not None]
+    for s, why in failed:
+        print('session %d failed: %s' % (s, why))
+    if not done:
+        print('FAIL: no session calibrated')
+        return 1
+    print('%-6s %10s %14s' % ('entry', 'RMS z', 'RMS error/CRB'))
+    all_z, all_b = [], []
+    for i, name in enumerate(NAMES):
+        z = [res['rows'][i][1] for res in done]
+        b = [res['rows'][i][2] for res in done]
+        all_z += z
+        all_b += b
+        print('%-6s %10.3f %14.3f' % (name, math.sqrt(sum(v * v for v in z) / len(z)),
+                                      math.sqrt(sum(v * v for v in b) / len(b))))
+    rms_z = math.sqrt(sum(v * v for v in all_z) / len(all_z))
+    rms_b = math.sqrt(sum(v * v for v in all_b) / len(all_b))
+    worst = max(abs(v) for v in all_z)
+    after = sum(res['after_deg'] for res in done) / len(done)
+    vf = sorted(res['vf'] for res in done)[len(done) // 2]
+    ok = not failed and 0.8 <= rms_z <= 1.25 and rms_b <= 1.2
+    print('%d/%d sessions; all entries: RMS z %.3f (bar 0.8-1.25), RMS error/CRB %.3f (bar <= 1.2), '
+          'largest |z| %.2f; mean turn residual after %.3f deg, median variance factor %.2f; %s'
+          % (len(done), len(seeds), rms_z, rms_b, worst, after, vf, 'PASS' if ok else 'FAIL'))
+    return 0 if ok else 1
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,29 @@
+# The gyroscope: calibrate of a whole IMU (imu_tk's Xsens recording, two
+# files of raw counts merged by row), the simulator's gyroscope, apply's
+# gyroscope units.
+set(_xsens_acc ${MPCAL_REAL_DATA}/xsens-multiposition/xsens_acc.mat)
+set(_xsens_gyro ${MPCAL_REAL_DATA}/xsens-multiposition/xsens_gyro.mat)
+
+mpcal_cli_test(calibrate_xsens_imu EXIT 0
+  MATCH "gyroscope: 37 turns between the positions; converged after [0-9]+ iterations; gravity carried over each turn vs measured after it, tilt RMS [0-9.]+ deg before \\(nominal scale, bias at every position\\), 0\\.(0|1|2|30|31|32)[0-9]* deg after"
+  ARGS calibrate ${_xsens_acc} --gyro-log ${_xsens_gyro} --units counts --gyro-units counts
+       --gravity 9.81744 -o imu.json)
+mpcal_cli_test(calibrate_xsens_imu_writes_imu_file EXIT 0 MATCH "wrote imu.json"
+  ARGS calibrate ${_xsens_acc} --gyro-log ${_xsens_gyro} --units counts --gyro-units counts
+       --gravity 9.81744 -o imu.json)
+mpcal_cli_test(calibrate_gyro_log_rows_differ EXIT 1
+  MATCH "mpcal: error: .*apply_log.csv has [0-9]+ rows but .*xsens_acc.mat has 51175" ABSENT imu.json
+  ARGS calibrate ${_xsens_acc} --gyro-log ${MPCAL_TEST_DATA}/apply_log.csv --units counts
+       --gyro-units counts --gravity 9.81744 -o imu.json)
+mpcal_cli_test(calibrate_help_gyro EXIT 0 MATCH "--gyro-log xsens_gyro.mat"
+  ARGS calibrate --help)
+mpcal_cli_test(calibrate_unknown_gyro_units EXIT 2
+  MATCH "--gyro-units: 'rpm' is not one of: rads, rad/s, dps, deg/s, counts" ABSENT imu.json
+  ARGS calibrate ${_xsens_acc} --gyro-units rpm -o imu.json)
+mpcal_cli_test(simulate_gyro_counts EXIT 0 MATCH "with gyroscope \\(counts\\)"
+  ARGS simulate static --preset colibri --gyro --gyro-units counts --positions 12 --dwell 3
+       -o s.csv --truth t.json)
+mpcal_cli_test(apply_unknown_out_gyro_units EXIT 2
+  MATCH "--out-gyro-units: 'rpm' is not one of: rads, dps"
+  ARGS apply ${MPCAL_TEST_DATA}/apply_calib.json ${MPCAL_TEST_DATA}/apply_log.csv -o out.csv
+       --out-gyro-units rpm)
