@@ -23,14 +23,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;  // the documented way to reject an input
   }
   if (track.enu_m.size() != track.time_s.size()) {
-    std::fprintf(stderr, "invariant broken: %zu epochs but %zu positions\n",
-                 track.time_s.size(), track.enu_m.size());
+    std::fprintf(stderr,
+                 "invariant broken: %zu epochs but %zu positions\n",
+                 track.time_s.size(),
+                 track.enu_m.size());
     std::abort();
   }
   for (std::size_t i = 0; i < track.size(); ++i) {
     if (!std::isfinite(track.time_s[i]) || !track.enu_m[i].allFinite() ||
         (i > 0 && !(track.time_s[i] > track.time_s[i - 1]))) {
-      std::fprintf(stderr, "invariant broken at epoch %zu: time %g\n", i, track.time_s[i]);
+      std::fprintf(
+          stderr, "invariant broken at epoch %zu: time %g\n", i, track.time_s[i]);
       std::abort();
     }
   }

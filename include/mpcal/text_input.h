@@ -30,6 +30,8 @@ inline constexpr std::size_t kMaxResultFileBytes = std::size_t{64} << 20;
 ///   device or socket, larger than `max_bytes` (checked before reading a
 ///   regular file, and as a pipe is read), NUL bytes or many control
 ///   characters in the first 64 KiB, or a read error.
-std::string ReadTextInput(const std::string& path, std::size_t max_bytes, std::string_view what);
+std::string ReadTextInput(const std::string& path,
+                          std::size_t max_bytes,
+                          std::string_view what);
 
 }  // namespace mpcal

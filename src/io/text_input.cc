@@ -33,33 +33,42 @@ void CheckText(const std::string& text, const std::string& name, std::string_vie
   for (std::size_t i = 0; i < n; ++i) {
     const auto c = static_cast<unsigned char>(text[i]);
     if (c == 0) {
-      throw Error(fmt::format("'{}' is not a text file (binary data at byte {}); expected a {}",
-                              name, i, what));
+      throw Error(
+          fmt::format("'{}' is not a text file (binary data at byte {}); expected a {}",
+                      name,
+                      i,
+                      what));
     }
     if (c < 0x20 && c != '\n' && c != '\r' && c != '\t' && c != '\f') ++controls;
   }
   if (controls * 100 > n) {
     throw Error(fmt::format(
-        "'{}' is not a text file (control characters in its first bytes); expected a {}", name,
+        "'{}' is not a text file (control characters in its first bytes); expected a {}",
+        name,
         what));
   }
 }
 
-std::string TooLarge(const std::string& name, std::size_t max_bytes, std::string_view what) {
-  return fmt::format("'{}' is larger than {} MiB, more than a {} holds", name,
-                     max_bytes >> 20, what);
+std::string TooLarge(const std::string& name,
+                     std::size_t max_bytes,
+                     std::string_view what) {
+  return fmt::format(
+      "'{}' is larger than {} MiB, more than a {} holds", name, max_bytes >> 20, what);
 }
 
 }  // namespace
 
-std::string ReadTextInput(const std::string& path, std::size_t max_bytes, std::string_view what) {
+std::string ReadTextInput(const std::string& path,
+                          std::size_t max_bytes,
+                          std::string_view what) {
   const bool is_stdin = path == "-";
   const std::string name = is_stdin ? "<stdin>" : path;
   int fd = STDIN_FILENO;
   if (!is_stdin) {
     fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
     if (fd < 0) {
-      throw Error(fmt::format("cannot read {} '{}': {}", what, path, std::strerror(errno)));
+      throw Error(
+          fmt::format("cannot read {} '{}': {}", what, path, std::strerror(errno)));
     }
   }
   struct Closer {
@@ -77,8 +86,10 @@ std::string ReadTextInput(const std::string& path, std::size_t max_bytes, std::s
     throw Error(fmt::format("'{}' is a directory; expected a {}", name, what));
   }
   if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode)) {
-    throw Error(fmt::format("'{}' is {}, not a {}; give a regular file or a pipe", name,
-                            FileKind(st.st_mode), what));
+    throw Error(fmt::format("'{}' is {}, not a {}; give a regular file or a pipe",
+                            name,
+                            FileKind(st.st_mode),
+                            what));
   }
   if (S_ISREG(st.st_mode) && static_cast<std::uint64_t>(st.st_size) > max_bytes) {
     throw Error(TooLarge(name, max_bytes, what));
@@ -98,7 +109,8 @@ std::string ReadTextInput(const std::string& path, std::size_t max_bytes, std::s
         text.resize(old);
         continue;
       }
-      throw Error(fmt::format("error reading {} '{}': {}", what, name, std::strerror(errno)));
+      throw Error(
+          fmt::format("error reading {} '{}': {}", what, name, std::strerror(errno)));
     }
     text.resize(old + static_cast<std::size_t>(n));
     if (n == 0) break;

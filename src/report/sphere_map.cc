@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -118,6 +119,20 @@ std::string SphereMap(const SphereMapSpec& spec) {
                  {d.covered ? "#000000" : "#D55E00", "", MarkerShape::kNone, 1.6, true});
       svg.CloseGroup();
     }
+    // Position labels are placed where they clear the labels already drawn
+    // on this disk (positions held twice in one orientation, like 1 and 6
+    // at the pole, drew "16"): up-right, down-right, up-left, down-left of
+    // the marker, then further down.
+    struct Box {
+      double x0, y0, x1, y1;
+    };
+    std::vector<Box> placed;
+    auto clear = [&placed](const Box& b) {
+      for (const Box& o : placed) {
+        if (b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1) return false;
+      }
+      return true;
+    };
     for (const SpherePoint& point : spec.points) {
       if (point.direction.norm() == 0.0) continue;
       const Eigen::Vector3d u = point.direction.normalized();
@@ -131,7 +146,23 @@ std::string SphereMap(const SphereMapSpec& spec) {
           fmt::format("position {}{}", point.label, point.used ? "" : " (excluded)"));
       svg.Marker(style.marker, cx + p.x(), cy - p.y(), 7, style);
       if (!point.label.empty()) {
-        svg.Text(cx + p.x() + 5, cy - p.y() - 5, point.label, "point-label", "start");
+        const double w = 6.0 * static_cast<double>(point.label.size());
+        const double x = cx + p.x();
+        const double y = cy - p.y();
+        // (left edge, baseline) candidates; the box is 9 units tall.
+        const double candidates[][2] = {{x + 5, y - 5},      {x + 5, y + 12},
+                                        {x - 5 - w, y - 5},  {x - 5 - w, y + 12},
+                                        {x + 5, y + 22},     {x - 5 - w, y + 22}};
+        Box box{x + 5, y - 14, x + 5 + w, y - 5};
+        for (const auto& c : candidates) {
+          const Box b{c[0], c[1] - 9, c[0] + w, c[1]};
+          if (clear(b)) {
+            box = b;
+            break;
+          }
+        }
+        placed.push_back(box);
+        svg.Text(box.x0, box.y1, point.label, "point-label", "start");
       }
       svg.CloseGroup();
     }

@@ -16,8 +16,8 @@
 namespace mpcal {
 namespace {
 
-using ::testing::HasSubstr;
 using mpcal::testing::ScratchDir;
+using ::testing::HasSubstr;
 
 std::string ErrorOf(const std::string& path, std::size_t max_bytes) {
   try {
@@ -49,8 +49,10 @@ TEST(TextInput, RefusesLargeFilesBeforeReadingThem) {
 
 TEST(TextInput, RefusesBinaryFromItsFirstBytes) {
   ScratchDir dir;
-  const std::string path = dir.Write("png.json", std::string("\x89PNG\r\n\x1a\n\0\0", 10));
-  EXPECT_THAT(ErrorOf(path, 1 << 20), HasSubstr("is not a text file (binary data at byte 8)"));
+  const std::string path =
+      dir.Write("png.json", std::string("\x89PNG\r\n\x1a\n\0\0", 10));
+  EXPECT_THAT(ErrorOf(path, 1 << 20),
+              HasSubstr("is not a text file (binary data at byte 8)"));
 }
 
 TEST(TextInput, ReadsAPipeAndStopsAtTheCap) {

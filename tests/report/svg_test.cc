@@ -1,6 +1,7 @@
 // The plotting module: scales and ticks, number formats, escaping,
 // decimation, the sphere's coverage, and the charts' SVG.
 #include <cmath>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -147,7 +148,9 @@ TEST(SphereMap, TheCubePositionsCoverAllTwentySixDirections) {
   // Named as detect names them, by what points down (issue 14: the report
   // named the reading direction, detect the face down: opposite names).
   for (const CanonicalDirection& d : c) {
-    if (d.direction.isApprox(Eigen::Vector3d::UnitZ())) EXPECT_EQ(d.name, "-z face");
+    if (d.direction.isApprox(Eigen::Vector3d::UnitZ())) {
+      EXPECT_EQ(d.name, "-z face");
+    }
     if (d.direction.isApprox(Eigen::Vector3d(1, 1, 1).normalized())) {
       EXPECT_EQ(d.name, "-x-y-z corner");
     }
@@ -176,6 +179,29 @@ TEST(SphereMap, TheCubePositionsCoverAllTwentySixDirections) {
                        std::cos(tilt)}),
               ElementsAre());
   EXPECT_THAT(covered(about_x(21.0), false), ElementsAre());  // excluded: never
+}
+
+// Issue 14: two positions in one orientation (1 and 6 at the pole) drew
+// their labels over each other ("16"); each label now clears the others.
+TEST(SphereMap, LabelsOfPositionsInOneOrientationDoNotOverlap) {
+  SphereMapSpec spec;
+  spec.points = {{Eigen::Vector3d::UnitZ(), "1", true}, {Eigen::Vector3d::UnitZ(), "6", true},
+                 {Eigen::Vector3d::UnitZ(), "12", true}};
+  const std::string svg = SphereMap(spec);
+  const std::regex label("<text x=\"([-0-9.]+)\" y=\"([-0-9.]+)\"[^>]*class=\"point-label\"");
+  std::vector<std::pair<double, double>> at;
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), label);
+       it != std::sregex_iterator(); ++it) {
+    at.emplace_back(std::stod((*it)[1]), std::stod((*it)[2]));
+  }
+  ASSERT_EQ(at.size(), 3u);
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    for (std::size_t j = i + 1; j < at.size(); ++j) {
+      const bool apart = std::abs(at[i].first - at[j].first) >= 12.0 ||
+                         std::abs(at[i].second - at[j].second) >= 9.0;
+      EXPECT_TRUE(apart) << "labels " << i << " and " << j << " overlap";
+    }
+  }
 }
 
 }  // namespace
