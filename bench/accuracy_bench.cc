@@ -70,7 +70,7 @@ bool Study(const mpcal::bench::Envelope& envelope, int sessions, std::uint64_t s
   // choose it by chance (binomial: 2 ± 1.4 of 200; 8 is beyond 0.1 %).
   const bool drifting = envelope.max_bias_drift_mps2_per_s > 0.0;
   const bool drift_ok =
-      drifting ? drift_chosen >= done * 0.95 : drift_chosen <= 2 + sessions / 25;
+      drifting ? drift_chosen >= done * 0.9 : drift_chosen <= 2 + sessions / 25;
   const bool ok = failures == 0 && overall <= 1.5 && reported_min.minCoeff() >= 0.5 &&
                   reported_max.maxCoeff() <= 2.0 && drift_ok;
   fmt::print(
@@ -91,8 +91,9 @@ int main(int argc, char** argv) {
   mpcal::bench::Envelope envelope;
   const bool without_drift = Study(envelope, sessions, seed);
   fmt::print("\n");
-  // A warm-up drift of up to 2e-5 m/s2 per s (0.12 mg per minute) per axis:
-  // tens of the bias's 1σ over a session of a few minutes.
+  // A warm-up drift of 1e-5 to 2e-5 m/s2 per s (0.06-0.12 mg per minute) per
+  // axis: tens of the bias's 1σ over a session of a few minutes. Each
+  // estimate is held against the bound of the model the calibration chose.
   envelope.max_bias_drift_mps2_per_s = 2e-5;
   const bool with_drift = Study(envelope, sessions, seed);
   return without_drift && with_drift ? 0 : 1;

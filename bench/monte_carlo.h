@@ -55,7 +55,13 @@ inline SimulateStaticOptions DrawSession(const Envelope& e, std::mt19937_64& rng
   o.units = u(rng) > 0.0 ? AccelUnits::kG : AccelUnits::kMps2;
   o.seed = rng();
   if (e.max_bias_drift_mps2_per_s > 0.0) {
-    for (int i = 0; i < 3; ++i) o.bias_drift_mps2_per_s[i] = e.max_bias_drift_mps2_per_s * u(rng);
+    // Half to all of the largest drift on each axis, either sign: a drift the
+    // session can see (a smaller one is indistinguishable from none).
+    for (int i = 0; i < 3; ++i) {
+      const double v = u(rng);
+      o.bias_drift_mps2_per_s[i] =
+          e.max_bias_drift_mps2_per_s * (v < 0.0 ? -1.0 : 1.0) * (0.5 + 0.5 * std::abs(v));
+    }
   }
   return o;
 }
@@ -77,8 +83,26 @@ inline std::optional<Outcome> RunSession(const SimulateStaticOptions& options) {
   try {
     const CalibrateResult r = CalibrateRecording(s.recording, calibrate);
     if (!r.solve.converged()) return std::nullopt;
-    const Eigen::Matrix<double, 9, 1> bound = SimulatedBoundSigma(s, options.initial_rest_s);
-    return Outcome{(ToVector(r.calibration.model) - ToVector(s.truth.model)).cwiseQuotient(bound),
+    // The bound of the model the calibration chose: with the drift
+    // estimated, or with a constant bias.
+    // The truth's bias is at its own reference (the last sample): moved to
+    // the estimate's.
+    SimulatedSession as_chosen = s;
+    if (!r.calibration.bias_drift) {
+      as_chosen.truth.bias_drift.reset();
+    } else {
+      BiasDrift moved = s.truth.bias_drift.value_or(BiasDrift{});
+      if (s.truth.bias_drift) {
+        as_chosen.truth.model.bias_mps2 +=
+            moved.mps2_per_s *
+            (r.calibration.bias_drift->reference_time_s - moved.reference_time_s);
+      }
+      moved.reference_time_s = r.calibration.bias_drift->reference_time_s;
+      as_chosen.truth.bias_drift = moved;
+    }
+    const Eigen::Matrix<double, 9, 1> bound = SimulatedBoundSigma(as_chosen, options.initial_rest_s);
+    return Outcome{(ToVector(r.calibration.model) - ToVector(as_chosen.truth.model))
+                       .cwiseQuotient(bound),
                    ToVector(*r.calibration.std).cwiseQuotient(bound),
                    r.calibration.bias_drift.has_value()};
   } catch (const Error&) {

@@ -41,8 +41,8 @@ std::string FormatSplitHalf(const SplitHalfSummary& check) {
   for (const SplitHalfComparison& c : check.comparisons) {
     const char* kind = c.kind == SplitKind::kByTime ? "by time" : "alternate positions";
     if (!c.determined) {
-      out += fmt::format("split-half ({}, {} + {} positions): not possible, a half does not "
-                         "determine every parameter\n",
+      out += fmt::format("split-half ({}, {} + {} positions): not possible, a half needs 5 "
+                         "positions more than the parameters and must determine them all\n",
                          kind, c.positions_first, c.positions_second);
       continue;
     }
@@ -98,8 +98,8 @@ std::string FormatParameterTable(const Calibration& calibration,
     const double per = 60.0 * 1e3 / kStandardGravityMps2;
     out += fmt::format(
         "bias drift x, y, z: {:+.4f} ± {:.4f}, {:+.4f} ± {:.4f}, {:+.4f} ± {:.4f} mg/min "
-        "(F test p = {:.2g}); the bias above is the bias at the end of the session, "
-        "t = {:.1f} s\n",
+        "(F test p = {:.2g}); the bias above is the bias at t = {:.1f} s, the middle of "
+        "the positions\n",
         d.mps2_per_s.x() * per, d.std_mps2_per_s.x() * per, d.mps2_per_s.y() * per,
         d.std_mps2_per_s.y() * per, d.mps2_per_s.z() * per, d.std_mps2_per_s.z() * per,
         d.p_value, d.reference_time_s);

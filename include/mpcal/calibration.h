@@ -44,8 +44,10 @@ struct Provenance {
 
 /// A bias that drifts linearly in time over the calibration session (a
 /// sensor warming up after power-on): b(t) = bias_mps2 + d·(t − t_ref). The
-/// calibration's bias_mps2 is the bias at t_ref, the end of the session, so
-/// that a correction that ignores the drift uses the latest bias.
+/// calibration's bias_mps2 is the bias at t_ref, the middle of the session's
+/// positions (the mean of their middles): the session's average bias, which
+/// a correction that ignores the drift (apply) uses, and the one a constant
+/// fit would find.
 struct BiasDrift {
   /// d (m/s² per second) and its 1σ.
   Eigen::Vector3d mps2_per_s = Eigen::Vector3d::Zero();
@@ -71,7 +73,8 @@ struct SplitHalfComparison {
   SplitKind kind = SplitKind::kByTime;
   int positions_first = 0;
   int positions_second = 0;
-  /// False when a half does not determine every parameter (or its fit
+  /// False when a half has fewer than 5 positions more than the parameters,
+  /// does not determine every parameter (or its fit
   /// failed): then there is no z.
   bool determined = false;
   /// Per estimated parameter, in the packed order of kParameterNames.

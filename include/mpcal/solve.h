@@ -62,7 +62,7 @@ struct SolveOptions {
   /// halves of a session whose whole showed a drift with it).
   bool force_bias_drift = false;
   /// t_ref in the positions' clock (s): a drifting bias is reported as the
-  /// bias at this time. Unset: the end of the last position.
+  /// bias at this time. Unset: the mean of the used positions' middles.
   std::optional<double> bias_reference_time_s;
   /// Offset of the readings before calibration (m/s²), for the "before"
   /// residuals only: zero for m/s² and g; for raw counts the ADC's zero

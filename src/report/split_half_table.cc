@@ -53,8 +53,8 @@ std::string SplitHalfTable(const SplitHalfSummary& check, ModelKind model) {
       row.insert(row.end(),
                  {"\u2014",
                   "\u2014",
-                  "not possible: a half does not determine "
-                  "every parameter"});
+                  "not possible: a half needs 5 positions more "
+                  "than the parameters"});
     }
     t.Row(row, c.determined && c.disagree ? "bad" : "");
   }

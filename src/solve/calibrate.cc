@@ -123,10 +123,6 @@ CalibrateResult CalibrateRecording(const Recording& recording,
 
   SolveOptions solve = options.solve;
   solve.nominal_offset_mps2 = nominal_offset_mps2;
-  // A drifting bias is reported at the end of the session: the latest bias.
-  if (!solve.bias_reference_time_s && !recording.time_s.empty()) {
-    solve.bias_reference_time_s = recording.time_s.back();
-  }
   result.solve = Solve(result.positions, solve);
   result.warnings = result.detection.warnings;  // positions dropped for clipping
   result.warnings.insert(result.warnings.end(), result.solve.warnings.begin(),

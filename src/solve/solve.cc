@@ -594,9 +594,18 @@ SolveResult Solve(std::span<const PositionObservation> positions,
     ++excluded;
   }
 
-  double reference_s = 0.0;
-  for (const auto& position : positions) reference_s = std::max(reference_s, position.end_s);
-  reference_s = options.bias_reference_time_s.value_or(reference_s);
+  // A drifting bias is reported at the middle of the used positions' times:
+  // there it is nearly uncorrelated with the drift rate, so it is the bias a
+  // constant-bias fit finds, and a drift chosen by chance barely moves it.
+  double mean_time_s = 0.0;
+  int used_count = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    if (!result.used[k]) continue;
+    mean_time_s += MidTime(positions[k]);
+    ++used_count;
+  }
+  const double reference_s =
+      options.bias_reference_time_s.value_or(mean_time_s / std::max(used_count, 1));
   if (options.consider_bias_drift || options.force_bias_drift) {
     ChooseBiasDrift(Select(positions, noise, result.used), options, reference_s, fit, result);
   }

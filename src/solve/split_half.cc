@@ -13,6 +13,9 @@ namespace {
 
 using Vector9 = Eigen::Matrix<double, kNumModelParameters, 1>;
 
+// Redundant positions each half needs for the check.
+constexpr int kMinSplitRedundancy = 5;
+
 // The two halves of the used positions: the first ⌈K/2⌉ in recording order
 // and the rest, or every other one.
 std::array<std::vector<PositionObservation>, 2> Halves(
@@ -54,6 +57,12 @@ SplitHalfComparison Compare(std::span<const PositionObservation> positions,
   c.kind = kind;
   c.positions_first = static_cast<int>(halves[0].size());
   c.positions_second = static_cast<int>(halves[1].size());
+  // A half with few redundant positions is nearly as many equations as
+  // unknowns: its 1σ rests on the linearisation of a barely determined fit
+  // and would make the halves look inconsistent when they are not.
+  const int needed = ParameterCount(half_options.model) +
+                     (half_options.force_bias_drift ? 3 : 0) + kMinSplitRedundancy;
+  if (std::min(c.positions_first, c.positions_second) < needed) return c;
   const auto first = FitHalf(halves[0], half_options);
   if (!first) return c;
   const auto second = FitHalf(halves[1], half_options);

@@ -174,6 +174,28 @@ TEST(CalibrationFile, SplitHalfCheckRoundTrips) {
   EXPECT_THAT(FromJsonError(bad.dump()), HasSubstr("fit.split_half.widening"));
 }
 
+TEST(CalibrationFile, BiasDriftRoundTrips) {
+  Calibration c = FullCalibration();
+  BiasDrift drift;
+  drift.mps2_per_s = {2e-5, -1e-5, 3e-5};
+  drift.std_mps2_per_s = {1e-6, 2e-6, 3e-6};
+  drift.reference_time_s = 151.25;
+  drift.p_value = 1e-4;
+  c.bias_drift = drift;
+  const nlohmann::json j = nlohmann::json::parse(CalibrationToJson(c));
+  EXPECT_EQ(j["bias_drift_mps2_per_s"][1], -1e-5);
+  EXPECT_EQ(j["bias_reference_time_s"], 151.25);
+  EXPECT_EQ(j["std"]["bias_drift_mps2_per_s"][2], 3e-6);
+  const Calibration r = CalibrationFromJson(j.dump(), "test");
+  ASSERT_TRUE(r.bias_drift.has_value());
+  EXPECT_EQ(r.bias_drift->mps2_per_s, drift.mps2_per_s);
+  EXPECT_EQ(r.bias_drift->std_mps2_per_s, drift.std_mps2_per_s);
+  EXPECT_EQ(r.bias_drift->reference_time_s, 151.25);
+  EXPECT_EQ(r.bias_drift->p_value, 1e-4);
+  // Without the drift fields there is no drift.
+  EXPECT_FALSE(CalibrationFromJson(CalibrationToJson(FullCalibration()), "t").bias_drift);
+}
+
 TEST(CalibrationFile, TruthFileWithoutOptionalPartsRoundTrips) {
   Calibration c;
   c.input_units = AccelUnits::kG;
