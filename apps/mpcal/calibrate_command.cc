@@ -39,7 +39,13 @@ std::string DescribeOptions(const CalibrateFlags& f) {
       ToString(f.calibrate.solve.robust), f.calibrate.detect.window_s,
       f.calibrate.detect.min_static_s, f.calibrate.detect.settle_s,
       f.calibrate.detect.threshold_factor,
-      f.log.columns.empty() ? "" : " --columns " + f.log.columns);
+      f.log.columns.empty() ? "" : " --columns " + f.log.columns) +
+         (f.gyro_log.empty() ? "" : " --gyro-log " + f.gyro_log) +
+         fmt::format(" --gyro-units {} --gyro-g-sensitivity {}",
+                     ToString(f.log.gyro_in_counts ? GyroUnits::kCounts
+                              : f.log.gyro_in_dps  ? GyroUnits::kDps
+                                                   : GyroUnits::kRadps),
+                     ToString(f.calibrate.gyro.g_sensitivity));
 }
 
 // How the log was read, for the calibration file, so that 'mpcal apply'

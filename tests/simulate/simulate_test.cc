@@ -319,6 +319,11 @@ TEST(SimulateStatic, GyroIntegratesToTheTurnBetweenPositions) {
   SimulateStaticOptions options = ShortSession("mti-g");
   options.gyro = true;
   options.gyro_noise_density_radps_per_sqrt_hz = 0.0;
+  // An ideal gyroscope: the true rate (the preset's errors are tested in
+  // tests/gyro/).
+  options.device.gyro_m = Eigen::Matrix3d::Identity();
+  options.device.gyro_bias_radps.setZero();
+  options.device.gyro_bias_walk_radps_per_sqrt_s = 0.0;
   options.positions = 8;
   const SimulatedSession s = SimulateStatic(options);
   ASSERT_EQ(s.recording.gyro_radps.size(), s.recording.size());
