@@ -176,8 +176,15 @@ CalibrateResult CalibrateRecording(const Recording& recording,
   // The gyroscope from the turns between the same positions, with the
   // gravity directions of the accelerometer just calibrated.
   if (options.calibrate_gyroscope && !recording.gyro_radps.empty() && result.solve.converged()) {
-    result.gyro = CalibrateGyroscope(recording, intervals, c, options.gyro);
-    if (result.gyro->converged()) c.gyroscope = result.gyro->calibration;
+    // The accelerometer's calibration stands without it: a gyroscope that
+    // cannot be calibrated is a warning, not a failure of the whole.
+    try {
+      result.gyro = CalibrateGyroscope(recording, intervals, c, options.gyro);
+      if (result.gyro->converged()) c.gyroscope = result.gyro->calibration;
+    } catch (const Error& e) {
+      result.warnings.push_back(std::string("gyroscope not calibrated: ") + e.what());
+      c.warnings = result.warnings;
+    }
   }
   return result;
 }
