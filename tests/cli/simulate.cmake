@@ -38,7 +38,7 @@ add_test(NAME cli.simulate_static_files
     \"$0\" simulate static --preset colibri --seed 3 --positions 8 --dwell 1 --units g --gyro -o s.csv --truth t.json
     test \"$(head -n1 s.csv)\" = 't,ax,ay,az,gx,gy,gz'
     test \"$(wc -l < s.csv)\" -eq 3401
-    grep -q '\"format\": \"mpcal.accelerometer/1\"' t.json
+    grep -q '\"format\": \"mpcal.imu/1\"' t.json
     grep -q '\"units\": \"g\"' t.json
     \"$0\" simulate static --preset mti-g --positions 2 --dwell 1 --units counts --trials 3 -o s.csv --truth t.json > out.txt
     test -s s_1.csv && test -s s_2.csv && test -s s_3.csv
