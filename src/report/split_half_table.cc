@@ -4,20 +4,12 @@
 
 #include <fmt/format.h>
 
+#include "report/display_units.h"
 #include "report/html.h"
 
 namespace mpcal::report {
 
 std::string SplitHalfTable(const SplitHalfSummary& check, ModelKind model) {
-  static constexpr const char* kNames[9] = {"bias x",
-                                            "bias y",
-                                            "bias z",
-                                            "scale x",
-                                            "scale y",
-                                            "scale z",
-                                            "\u03b8yz",
-                                            "\u03b8zx",
-                                            "\u03b8zy"};
   const int p = ParameterCount(model);
   std::string html = "<h3>Split-half check</h3>\n";
   html += Paragraph(
@@ -33,7 +25,7 @@ std::string SplitHalfTable(const SplitHalfSummary& check, ModelKind model) {
       "note");
   Table t;
   std::vector<std::string> header = {"Split", "Positions"};
-  for (int i = 0; i < p; ++i) header.emplace_back(kNames[i]);
+  for (int i = 0; i < p; ++i) header.emplace_back(ParameterShortLabel(i));
   header.insert(header.end(), {"RMS z", "p", "Verdict"});
   t.Header(header);
   for (const SplitHalfComparison& c : check.comparisons) {
