@@ -5,7 +5,7 @@ BUILD      ?= build
 JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure build demo test bench fuzz test-sanitize install clean format readme
+.PHONY: all deps configure build demo test bench fuzz test-sanitize install clean format lint readme
 
 all: build
 
@@ -55,6 +55,10 @@ install: build
 
 format:
 	clang-format -i $$(git ls-files '*.h' '*.cc')
+
+# clang-format, file sizes and clang-tidy, as CI checks them (scripts/lint.sh).
+lint: configure
+	bash scripts/lint.sh $(BUILD)
 
 clean:
 	rm -rf $(BUILD) build-sanitize build-fuzz

@@ -31,16 +31,26 @@ int main(int argc, char** argv) {
     if (!outcome) {
       ++not_converged;
       fmt::print("session {} (seed {}): no convergence\n", i, options.seed);
-    } else if (outcome->error_over_bound.cwiseAbs().maxCoeff() > kConvergedWithinBoundSigma) {
+    } else if (outcome->error_over_bound.cwiseAbs().maxCoeff() >
+               kConvergedWithinBoundSigma) {
       ++wrong;
-      fmt::print("session {} (seed {}): converged {:.1f} bound-σ from the truth\n", i,
-                 options.seed, outcome->error_over_bound.cwiseAbs().maxCoeff());
+      fmt::print("session {} (seed {}): converged {:.1f} bound-σ from the truth\n",
+                 i,
+                 options.seed,
+                 outcome->error_over_bound.cwiseAbs().maxCoeff());
     }
   }
-  fmt::print("convergence: {} sessions (bias <= {} g, scale error <= {}, angles <= {} rad, "
-             "{}-{} positions): {} did not converge, {} converged elsewhere; {}\n",
-             sessions, envelope.max_bias_g, envelope.max_scale_error, envelope.max_angle_rad,
-             envelope.min_positions, envelope.max_positions, not_converged, wrong,
-             not_converged + wrong == 0 ? "PASS" : "FAIL");
+  fmt::print(
+      "convergence: {} sessions (bias <= {} g, scale error <= {}, angles <= {} rad, "
+      "{}-{} positions): {} did not converge, {} converged elsewhere; {}\n",
+      sessions,
+      envelope.max_bias_g,
+      envelope.max_scale_error,
+      envelope.max_angle_rad,
+      envelope.min_positions,
+      envelope.max_positions,
+      not_converged,
+      wrong,
+      not_converged + wrong == 0 ? "PASS" : "FAIL");
   return not_converged + wrong == 0 ? 0 : 1;
 }

@@ -45,8 +45,11 @@ int main(int argc, char** argv) {
     }
     int preset_flagged = 0;
     for (int f : flagged) preset_flagged += f;
-    fmt::print("{:<13} flagged per parameter: {} of {} sets each: {}\n", preset,
-               fmt::join(flagged, " "), sets, preset_flagged);
+    fmt::print("{:<13} flagged per parameter: {} of {} sets each: {}\n",
+               preset,
+               fmt::join(flagged, " "),
+               sets,
+               preset_flagged);
     total_flagged += preset_flagged;
     total_tests += sets * kNumModelParameters;
   }
@@ -54,10 +57,15 @@ int main(int argc, char** argv) {
   const double expected = options.significance * total_tests;
   const double sigma = std::sqrt(expected * (1.0 - options.significance));
   const bool pass = std::abs(total_flagged - expected) <= 4.0 * sigma;
-  fmt::print("false alarms: {} of {} parameter tests ({:.2f} %; {:.0f} % expected, pass "
-             "within {:.0f}..{:.0f}); {}\n",
-             total_flagged, total_tests, 100.0 * total_flagged / total_tests,
-             100.0 * options.significance, std::max(0.0, expected - 4.0 * sigma),
-             expected + 4.0 * sigma, pass ? "PASS" : "FAIL");
+  fmt::print(
+      "false alarms: {} of {} parameter tests ({:.2f} %; {:.0f} % expected, pass "
+      "within {:.0f}..{:.0f}); {}\n",
+      total_flagged,
+      total_tests,
+      100.0 * total_flagged / total_tests,
+      100.0 * options.significance,
+      std::max(0.0, expected - 4.0 * sigma),
+      expected + 4.0 * sigma,
+      pass ? "PASS" : "FAIL");
   return pass ? 0 : 1;
 }

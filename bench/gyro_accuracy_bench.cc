@@ -38,7 +38,8 @@ mpcal::SimulateStaticOptions Draw(std::mt19937_64& rng, std::uint64_t seed) {
   o.rate_hz = std::uniform_real_distribution<double>(100.0, 200.0)(rng);
   Eigen::Matrix3d m;
   for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) m(r, c) = r == c ? 1.0 + kMaxScale * u(rng) : kMaxMisalignmentRad * u(rng);
+    for (int c = 0; c < 3; ++c)
+      m(r, c) = r == c ? 1.0 + kMaxScale * u(rng) : kMaxMisalignmentRad * u(rng);
   }
   o.device.gyro_m = m;
   o.device.gyro_bias_radps = Eigen::Vector3d(u(rng), u(rng), u(rng)) * kMaxBiasDps * kDeg;
@@ -51,9 +52,13 @@ int main(int argc, char** argv) {
   using namespace mpcal;
   const int sessions = argc > 1 ? std::atoi(argv[1]) : 1000;
   std::mt19937_64 rng(argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 1);
-  fmt::print("gyroscope accuracy: {} sessions, 26 positions, 2 s turns, 100-200 Hz, scale error "
-             "<= {}, misalignment <= {} rad, bias <= {} deg/s, colibri noise\n",
-             sessions, kMaxScale, kMaxMisalignmentRad, kMaxBiasDps);
+  fmt::print(
+      "gyroscope accuracy: {} sessions, 26 positions, 2 s turns, 100-200 Hz, scale error "
+      "<= {}, misalignment <= {} rad, bias <= {} deg/s, colibri noise\n",
+      sessions,
+      kMaxScale,
+      kMaxMisalignmentRad,
+      kMaxBiasDps);
   Eigen::Matrix<double, 9, 1> sum_bound = Eigen::Matrix<double, 9, 1>::Zero();
   Eigen::Matrix<double, 9, 1> sum_z = Eigen::Matrix<double, 9, 1>::Zero();
   int failures = 0;
@@ -71,7 +76,8 @@ int main(int argc, char** argv) {
       continue;
     }
     if (!r.gyro || !r.gyro->converged()) {
-      fmt::print("session {}: gyroscope {}\n", i, r.gyro ? ToString(r.gyro->status) : "absent");
+      fmt::print(
+          "session {}: gyroscope {}\n", i, r.gyro ? ToString(r.gyro->status) : "absent");
       ++failures;
       continue;
     }
@@ -90,14 +96,22 @@ int main(int argc, char** argv) {
   }
   fmt::print("{:<8} {:>16} {:>10}\n", "entry", "RMS error/bound", "RMS z");
   for (int p = 0; p < 9; ++p) {
-    fmt::print("{:<8} {:>16.3f} {:>10.3f}\n", kGyroParameterNames[p], std::sqrt(sum_bound[p] / done),
+    fmt::print("{:<8} {:>16.3f} {:>10.3f}\n",
+               kGyroParameterNames[p],
+               std::sqrt(sum_bound[p] / done),
                std::sqrt(sum_z[p] / done));
   }
   const double overall = std::sqrt(sum_bound.sum() / (9.0 * done));
   const double z = std::sqrt(sum_z.sum() / (9.0 * done));
   const bool ok = failures == 0 && overall <= 1.2 && z >= 0.8 && z <= 1.25;
-  fmt::print("all entries: RMS error/bound {:.3f} (bar: <= 1.2), RMS z {:.3f} (bar: 0.8-1.25); "
-             "mean turn residual after {:.3f} deg; converged {}/{}; {}\n",
-             overall, z, after_deg / std::max(done, 1), done, sessions, ok ? "PASS" : "FAIL");
+  fmt::print(
+      "all entries: RMS error/bound {:.3f} (bar: <= 1.2), RMS z {:.3f} (bar: 0.8-1.25); "
+      "mean turn residual after {:.3f} deg; converged {}/{}; {}\n",
+      overall,
+      z,
+      after_deg / std::max(done, 1),
+      done,
+      sessions,
+      ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }

@@ -59,8 +59,8 @@ inline SimulateStaticOptions DrawSession(const Envelope& e, std::mt19937_64& rng
     // session can see (a smaller one is indistinguishable from none).
     for (int i = 0; i < 3; ++i) {
       const double v = u(rng);
-      o.bias_drift_mps2_per_s[i] =
-          e.max_bias_drift_mps2_per_s * (v < 0.0 ? -1.0 : 1.0) * (0.5 + 0.5 * std::abs(v));
+      o.bias_drift_mps2_per_s[i] = e.max_bias_drift_mps2_per_s * (v < 0.0 ? -1.0 : 1.0) *
+                                   (0.5 + 0.5 * std::abs(v));
     }
   }
   return o;
@@ -100,7 +100,8 @@ inline std::optional<Outcome> RunSession(const SimulateStaticOptions& options) {
       moved.reference_time_s = r.calibration.bias_drift->reference_time_s;
       as_chosen.truth.bias_drift = moved;
     }
-    const Eigen::Matrix<double, 9, 1> bound = SimulatedBoundSigma(as_chosen, options.initial_rest_s);
+    const Eigen::Matrix<double, 9, 1> bound =
+        SimulatedBoundSigma(as_chosen, options.initial_rest_s);
     return Outcome{(ToVector(r.calibration.model) - ToVector(as_chosen.truth.model))
                        .cwiseQuotient(bound),
                    ToVector(*r.calibration.std).cwiseQuotient(bound),

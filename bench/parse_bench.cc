@@ -37,8 +37,11 @@ const std::string& LogPath() {
     std::ofstream out(p, std::ios::binary);
     out << "t,ax,ay,az\n";
     for (int i = 0; i < kRows; ++i) {
-      out << fmt::format("{},{:.9g},{:.9g},{:.9g}\n", i * 0.001, 0.12 + noise(rng),
-                         -0.34 + noise(rng), 9.80665 + noise(rng));
+      out << fmt::format("{},{:.9g},{:.9g},{:.9g}\n",
+                         i * 0.001,
+                         0.12 + noise(rng),
+                         -0.34 + noise(rng),
+                         9.80665 + noise(rng));
     }
     std::atexit([] { std::filesystem::remove(LogPath()); });
     return p;

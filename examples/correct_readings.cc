@@ -16,8 +16,8 @@ int main(int argc, char** argv) {
     const mpcal::Calibration calibration = mpcal::ReadCalibrationFile(argv[1]);
     // A sensor lying flat, read in the units the calibration was made for
     // (calibration.input_units): 1 g on z, nothing on x and y.
-    const Eigen::Vector3d reading(0.0, 0.0,
-                                  calibration.gravity_mps2 / calibration.mps2_per_unit);
+    const Eigen::Vector3d reading(
+        0.0, 0.0, calibration.gravity_mps2 / calibration.mps2_per_unit);
     const Eigen::Vector3d a_mps2 = calibration.Correct(reading);
     std::cout << "corrected specific force (m/s2): " << a_mps2.transpose()
               << ", |a| = " << a_mps2.norm() << "\n";

@@ -2,12 +2,12 @@
 //
 // The input's first byte picks the options (time unit, rate, entry point,
 // an explicit column mapping taken from the input's first line; see
-// log_reader_input.h); the rest is the log. The log goes through an in-memory file (memfd) opened by its
-// /proc path, so that the reader runs exactly as on a file from disk,
-// including stat, the regular-file size and chunked read(2), without touching
-// the disk. Any outcome but success or mpcal::Error is a finding: an uncaught
-// exception of another type, a sanitizer report, or a Recording that breaks
-// its documented invariants (finite values, strictly increasing time).
+// log_reader_input.h); the rest is the log. The log goes through an in-memory file
+// (memfd) opened by its /proc path, so that the reader runs exactly as on a file from
+// disk, including stat, the regular-file size and chunked read(2), without touching the
+// disk. Any outcome but success or mpcal::Error is a finding: an uncaught exception of
+// another type, a sanitizer report, or a Recording that breaks its documented invariants
+// (finite values, strictly increasing time).
 #include <sys/mman.h>
 #include <unistd.h>
 
@@ -53,8 +53,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const mpcal::LogOptions& options = in.options;
 
   const int fd = MemoryFile();
-  if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, rest.data(), rest.size(), 0) !=
-                                     static_cast<ssize_t>(rest.size())) {
+  if (::ftruncate(fd, 0) != 0 ||
+      ::pwrite(fd, rest.data(), rest.size(), 0) != static_cast<ssize_t>(rest.size())) {
     std::perror("memfd write");
     std::abort();
   }
@@ -70,7 +70,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         previous_line = line.line_number;
         if (!line.is_data) continue;
         for (const auto& [first, second] : line.accel_span) {
-          Check(first <= second && second <= line.text.size(), "accel span inside the line");
+          Check(first <= second && second <= line.text.size(),
+                "accel span inside the line");
         }
         Check(line.accel.allFinite() && std::isfinite(line.time_raw), "finite data line");
       }

@@ -28,10 +28,14 @@ inline LogReaderInput DecodeLogReaderInput(const std::uint8_t* data, std::size_t
   if (size == 0) return in;
   const std::uint8_t selector = data[0];
   std::string_view rest(reinterpret_cast<const char*>(data + 1), size - 1);
-  constexpr TimeUnit kUnits[] = {TimeUnit::kAuto,         TimeUnit::kSeconds,
-                                 TimeUnit::kMilliseconds, TimeUnit::kMicroseconds,
-                                 TimeUnit::kNanoseconds,  TimeUnit::kSampleIndex,
-                                 TimeUnit::kAuto,         TimeUnit::kAuto};
+  constexpr TimeUnit kUnits[] = {TimeUnit::kAuto,
+                                 TimeUnit::kSeconds,
+                                 TimeUnit::kMilliseconds,
+                                 TimeUnit::kMicroseconds,
+                                 TimeUnit::kNanoseconds,
+                                 TimeUnit::kSampleIndex,
+                                 TimeUnit::kAuto,
+                                 TimeUnit::kAuto};
   in.options.time_unit = kUnits[selector & 7];
   in.options.rate_hz = (selector & 8) ? 100.0 : 0.0;
   in.options.gyro_in_dps = (selector & 16) != 0;

@@ -22,6 +22,8 @@ packages=(
   python3              # checks the rendered report's DOM and screenshot
   python3-numpy        # bench/independent generators (gen_imu_session.py, gen_still.py)
   clang                # libFuzzer targets (make fuzz)
+  clang-format         # the code's layout, checked by scripts/lint.sh (.ci/run)
+  clang-tidy           # bug-prone patterns and function size, scripts/lint.sh
 )
 
 missing=()

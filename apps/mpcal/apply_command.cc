@@ -83,12 +83,17 @@ void RunApply(CLI::App& cmd, ApplyFlags& flags) {
   // only when the log went to a file.
   if (flags.output != "-") {
     fmt::print("corrected {} rows of '{}' into '{}' (accelerometer in {}",
-               result.data_rows, flags.input, flags.output, ToString(result.out_units));
+               result.data_rows,
+               flags.input,
+               flags.output,
+               ToString(result.out_units));
     if (result.gyro_corrected) {
-      fmt::print(", gyroscope in {}", result.out_gyro_units == GyroUnits::kDps ? "deg/s" : "rad/s");
+      fmt::print(", gyroscope in {}",
+                 result.out_gyro_units == GyroUnits::kDps ? "deg/s" : "rad/s");
     }
     if (result.rest_magnitude_mps2) {
-      fmt::print("; |a| at rest {:.5f} m/s², gravity {:.5f} m/s²", *result.rest_magnitude_mps2,
+      fmt::print("; |a| at rest {:.5f} m/s², gravity {:.5f} m/s²",
+                 *result.rest_magnitude_mps2,
                  calibration.gravity_mps2);
     }
     fmt::print(")\n");
@@ -99,32 +104,39 @@ void RunApply(CLI::App& cmd, ApplyFlags& flags) {
 
 void AddApplyCommand(CLI::App& root) {
   auto flags = std::make_shared<ApplyFlags>();
-  CLI::App* cmd = root.add_subcommand(
-      "apply",
-      "Correct a log with a calibration file: every accelerometer row by eqs 8-10, and the "
-      "gyroscope columns by ω = M (raw − b) with an IMU calibration; the other columns, the "
-      "header, comments and row order kept as they are.");
-  cmd->add_option("CALIB", flags->calibration,
+  CLI::App* cmd = root.add_subcommand("apply",
+                                      "Correct a log with a calibration file: every "
+                                      "accelerometer row by eqs 8-10, and the "
+                                      "gyroscope columns by ω = M (raw − b) with an IMU "
+                                      "calibration; the other columns, the "
+                                      "header, comments and row order kept as they are.");
+  cmd->add_option("CALIB",
+                  flags->calibration,
                   "Calibration file (JSON) written by 'mpcal calibrate'")
       ->required();
-  cmd->add_option("INPUT", flags->input, "Log to correct ('-': standard input)")->required();
-  cmd->add_option("-o,--output", flags->output,
+  cmd->add_option("INPUT", flags->input, "Log to correct ('-': standard input)")
+      ->required();
+  cmd->add_option("-o,--output",
+                  flags->output,
                   "Corrected log ('-': standard output); written whole or not at all")
       ->check(OutputPath)
       ->required();
   AddLogOptions(*cmd, flags->options.log);
-  const std::vector<std::pair<std::string, AccelUnits>> out_units{{"mps2", AccelUnits::kMps2},
-                                                    {"g", AccelUnits::kG}};
-  cmd->add_option("--out-units", flags->out_units,
+  const std::vector<std::pair<std::string, AccelUnits>> out_units{
+      {"mps2", AccelUnits::kMps2}, {"g", AccelUnits::kG}};
+  cmd->add_option("--out-units",
+                  flags->out_units,
                   "Units of the corrected accelerometer columns: mps2 or g (default: the "
                   "log's units; m/s2 for a log in counts)")
       ->transform(OneOf(out_units))
       ->group("Output");
   const std::vector<std::pair<std::string, GyroUnits>> out_gyro_units{
       {"rads", GyroUnits::kRadps}, {"dps", GyroUnits::kDps}};
-  cmd->add_option("--out-gyro-units", flags->out_gyro_units,
-                  "Units of the corrected gyroscope columns (an IMU calibration): rads or dps "
-                  "(default: the log's units; rad/s for a log in counts)")
+  cmd->add_option(
+         "--out-gyro-units",
+         flags->out_gyro_units,
+         "Units of the corrected gyroscope columns (an IMU calibration): rads or dps "
+         "(default: the log's units; rad/s for a log in counts)")
       ->transform(OneOf(out_gyro_units))
       ->group("Output");
   cmd->footer(
@@ -132,7 +144,8 @@ void AddApplyCommand(CLI::App& root) {
       "  mpcal apply calib.json session.csv -o corrected.csv\n"
       "  logger | mpcal apply calib.json - -o - --out-units g | plot\n"
       "  mpcal apply imu.json imu_session.csv -o corrected.csv --out-gyro-units dps\n"
-      "The log is read with the calibration's units unless --units is given, and with the\n"
+      "The log is read with the calibration's units unless --units is given, and with "
+      "the\n"
       "columns, time unit and rate the calibration was made with unless --columns,\n"
       "--time-unit or --rate is given; a log whose magnitude at rest is far from the\n"
       "calibration's gravity gets a warning. With --out-units g, unit labels in the\n"

@@ -7,9 +7,9 @@
 #include <fmt/format.h>
 
 #include "calibration_table.h"
-#include "gyro_table.h"
 #include "cli_options.h"
 #include "command.h"
+#include "gyro_table.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/calibration_file.h"
@@ -33,13 +33,18 @@ struct CalibrateFlags {
 // The options that shaped the result, as a command line a user can rerun.
 std::string DescribeOptions(const CalibrateFlags& f) {
   return fmt::format(
-      "--units {} --gravity {:.6f} --model {} --robust {} --window {} --min-static {} "
-      "--settle {} --threshold {}{}",
-      ToString(f.log.units), f.calibrate.solve.gravity_mps2, ToString(f.calibrate.solve.model),
-      ToString(f.calibrate.solve.robust), f.calibrate.detect.window_s,
-      f.calibrate.detect.min_static_s, f.calibrate.detect.settle_s,
-      f.calibrate.detect.threshold_factor,
-      f.log.columns.empty() ? "" : " --columns " + f.log.columns) +
+             "--units {} --gravity {:.6f} --model {} --robust {} --window {} "
+             "--min-static {} "
+             "--settle {} --threshold {}{}",
+             ToString(f.log.units),
+             f.calibrate.solve.gravity_mps2,
+             ToString(f.calibrate.solve.model),
+             ToString(f.calibrate.solve.robust),
+             f.calibrate.detect.window_s,
+             f.calibrate.detect.min_static_s,
+             f.calibrate.detect.settle_s,
+             f.calibrate.detect.threshold_factor,
+             f.log.columns.empty() ? "" : " --columns " + f.log.columns) +
          (f.gyro_log.empty() ? "" : " --gyro-log " + f.gyro_log) +
          fmt::format(" --gyro-units {} --gyro-g-sensitivity {}",
                      ToString(f.log.gyro_in_counts ? GyroUnits::kCounts
@@ -70,14 +75,16 @@ std::optional<Calibration::InputLayout> RecordedLayout(const std::string& input,
   if (layout.time_column >= 0) columns = "t=" + name(layout.time_column);
   static constexpr const char* kKeys[] = {"ax", "ay", "az"};
   for (int i = 0; i < 3; ++i) {
-    columns += fmt::format("{}{}={}", columns.empty() ? "" : ",", kKeys[i],
+    columns += fmt::format("{}{}={}",
+                           columns.empty() ? "" : ",",
+                           kKeys[i],
                            name(layout.accel_columns[static_cast<std::size_t>(i)]));
   }
   if (layout.has_gyro()) {
     static constexpr const char* kGyroKeys[] = {"gx", "gy", "gz"};
     for (int i = 0; i < 3; ++i) {
-      columns += fmt::format(",{}={}", kGyroKeys[i],
-                             name(layout.gyro_columns[static_cast<std::size_t>(i)]));
+      columns += fmt::format(
+          ",{}={}", kGyroKeys[i], name(layout.gyro_columns[static_cast<std::size_t>(i)]));
     }
   }
   Calibration::InputLayout out;
@@ -116,14 +123,17 @@ void Run(CalibrateFlags& f) {
     throw Error("--counts-per-g is the scale of raw counts: it goes with --units counts");
   }
   CalibrateResult result = CalibrateRecording(recording, f.calibrate);
-  result.calibration.provenance =
-      Provenance{MPCAL_VERSION, f.input, DescribeOptions(f)};
+  result.calibration.provenance = Provenance{MPCAL_VERSION, f.input, DescribeOptions(f)};
   result.calibration.input_layout = RecordedLayout(f.input, f.log);
 
-  fmt::print("{}: {} rows, {:.1f} s; model {}, gravity {:.5f} m/s2\n", f.input,
-             recording.size(), recording.time_s.back() - recording.time_s.front(),
-             ToString(f.calibrate.solve.model), f.calibrate.solve.gravity_mps2);
-  fmt::print("{}\n{}", FormatParameterTable(result.calibration), FormatFitSummary(result));
+  fmt::print("{}: {} rows, {:.1f} s; model {}, gravity {:.5f} m/s2\n",
+             f.input,
+             recording.size(),
+             recording.time_s.back() - recording.time_s.front(),
+             ToString(f.calibrate.solve.model),
+             f.calibrate.solve.gravity_mps2);
+  fmt::print(
+      "{}\n{}", FormatParameterTable(result.calibration), FormatFitSummary(result));
   if (result.gyro) {
     if (result.calibration.gyroscope) {
       fmt::print("\n{}", FormatGyroTable(*result.calibration.gyroscope));
@@ -133,9 +143,12 @@ void Run(CalibrateFlags& f) {
   PrintWarnings(result.warnings);
   if (result.gyro) PrintWarnings(GyroFindingMessages(*result.gyro));
   if (!result.solve.converged()) {
-    throw Error(fmt::format("{}: the fit did not converge ({}); no calibration written. "
-                            "Check the positions with 'mpcal detect {}'",
-                            f.input, result.solve.message, f.input));
+    throw Error(
+        fmt::format("{}: the fit did not converge ({}); no calibration written. "
+                    "Check the positions with 'mpcal detect {}'",
+                    f.input,
+                    result.solve.message,
+                    f.input));
   }
   if (!f.output.empty()) {
     WriteCalibrationFile(f.output, result.calibration);
@@ -154,26 +167,35 @@ void AddCalibrateCommand(CLI::App& root) {
       "between the positions when the log has one; write a calibration file");
   app->add_option("INPUT", flags->input, "Log: CSV or text, '-' for standard input")
       ->required();
-  app->add_option("-o,--output", flags->output,
+  app->add_option("-o,--output",
+                  flags->output,
                   "Calibration file to write (JSON: mpcal.imu/1 with the gyroscope, "
                   "mpcal.accelerometer/1 without); without it, only print")
       ->check(OutputPath);
-  app->add_option("--gyro-log", flags->gyro_log,
-                  "The gyroscope in a file of its own (t, x, y, z; the same rows as INPUT, "
-                  "in --gyro-units)")
+  app->add_option(
+         "--gyro-log",
+         flags->gyro_log,
+         "The gyroscope in a file of its own (t, x, y, z; the same rows as INPUT, "
+         "in --gyro-units)")
       ->group("Input log");
   AddLogOptions(*app, flags->log);
-  app->add_option("--gyro-window", flags->calibrate.gyro.direction_window_s,
-                  "Gravity direction at each end of a turn: the accelerometer's mean over this "
-                  "long (s) next to the turn; 0 = the whole position")
+  app->add_option(
+         "--gyro-window",
+         flags->calibrate.gyro.direction_window_s,
+         "Gravity direction at each end of a turn: the accelerometer's mean over this "
+         "long (s) next to the turn; 0 = the whole position")
       ->capture_default_str()
       ->check(NonNegativeNumber)
       ->group("Gyroscope");
   const std::vector<std::pair<std::string, GSensitivity>> g_modes{
-      {"auto", GSensitivity::kAuto}, {"on", GSensitivity::kOn}, {"off", GSensitivity::kOff}};
-  app->add_option("--gyro-g-sensitivity", flags->calibrate.gyro.g_sensitivity,
-                  "Model the gyroscope bias's sensitivity to specific force (b = b0 + G f) "
-                  "from the positions: auto (when the biases show it), on or off")
+      {"auto", GSensitivity::kAuto},
+      {"on", GSensitivity::kOn},
+      {"off", GSensitivity::kOff}};
+  app->add_option(
+         "--gyro-g-sensitivity",
+         flags->calibrate.gyro.g_sensitivity,
+         "Model the gyroscope bias's sensitivity to specific force (b = b0 + G f) "
+         "from the positions: auto (when the biases show it), on or off")
       ->transform(OneOf(g_modes))
       ->default_str("auto")
       ->group("Gyroscope");
@@ -183,11 +205,14 @@ void AddCalibrateCommand(CLI::App& root) {
       "Examples:\n"
       "  mpcal calibrate session.csv -o calib.json\n"
       "  mpcal calibrate xsens_acc.mat --units counts --gravity 9.81744 -o xsens.json\n"
-      "  mpcal calibrate imu.csv --gyro-units dps -o imu.json   (columns ax..az, gx..gz)\n"
+      "  mpcal calibrate imu.csv --gyro-units dps -o imu.json   (columns ax..az, "
+      "gx..gz)\n"
       "  mpcal calibrate xsens_acc.mat --gyro-log xsens_gyro.mat --units counts \\\n"
       "      --gyro-units counts --gravity 9.81744 -o xsens_imu.json\n"
-      "  mpcal calibrate six_poses.csv --model bias-scale-6 --latitude 49.6 --height 300\n"
-      "  mpcal calibrate arduino_serial.txt --units counts --counts-per-g 16384 -o mpu6050.json");
+      "  mpcal calibrate six_poses.csv --model bias-scale-6 --latitude 49.6 --height "
+      "300\n"
+      "  mpcal calibrate arduino_serial.txt --units counts --counts-per-g 16384 -o "
+      "mpu6050.json");
   app->callback([flags] { Run(*flags); });
 }
 

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "explain.h"
 #include "mpcal/error.h"
 #include "mpcal/gravity.h"
 #include "mpcal/plausible.h"
@@ -20,7 +21,8 @@ CLI::Validator NumberAtLeast(bool allow_zero) {
           return "";
         }
         return fmt::format("must be a {} number, got '{}'",
-                           allow_zero ? "positive (or zero)" : "positive", text);
+                           allow_zero ? "positive (or zero)" : "positive",
+                           text);
       },
       allow_zero ? "NONNEGATIVE" : "POSITIVE");
 }
@@ -31,48 +33,61 @@ const CLI::Validator PositiveNumber = NumberAtLeast(false);
 const CLI::Validator NonNegativeNumber = NumberAtLeast(true);
 const CLI::Validator OutputPath(
     [](const std::string& text) -> std::string {
-      return text.empty() ? "the file name is empty; give a path, or '-' for standard output"
-                          : "";
+      return text.empty()
+                 ? "the file name is empty; give a path, or '-' for standard output"
+                 : "";
     },
     "PATH");
 
 void AddLogOptions(CLI::App& app, LogOptions& options) {
   const std::vector<std::pair<std::string, AccelUnits>> units{
-      {"mps2", AccelUnits::kMps2}, {"g", AccelUnits::kG}, {"counts", AccelUnits::kCounts}};
+      {"mps2", AccelUnits::kMps2},
+      {"g", AccelUnits::kG},
+      {"counts", AccelUnits::kCounts}};
   const std::vector<std::pair<std::string, TimeUnit>> time_units{
-      {"auto", TimeUnit::kAuto},          {"s", TimeUnit::kSeconds},
-      {"ms", TimeUnit::kMilliseconds},    {"us", TimeUnit::kMicroseconds},
-      {"ns", TimeUnit::kNanoseconds},     {"index", TimeUnit::kSampleIndex}};
-  app.add_option("--columns", options.columns,
+      {"auto", TimeUnit::kAuto},
+      {"s", TimeUnit::kSeconds},
+      {"ms", TimeUnit::kMilliseconds},
+      {"us", TimeUnit::kMicroseconds},
+      {"ns", TimeUnit::kNanoseconds},
+      {"index", TimeUnit::kSampleIndex}};
+  app.add_option(std::string(FlagName(Option::kLogColumns)),
+                 options.columns,
                  "Column mapping t=NAME|INDEX,ax=..,ay=..,az=..[,gx=..,gy=..,gz=..] "
                  "(0-based indices); default: from the header, else t,ax,ay,az")
       ->group("Input log");
-  app.add_option("--units", options.units,
+  app.add_option(std::string(FlagName(Option::kLogUnits)),
+                 options.units,
                  "Accelerometer units in the log: mps2, g (9.80665 m/s2) or counts "
                  "(raw ADC; offset and scale found from the positions)")
       ->transform(OneOf(units))
       ->default_str("mps2")
       ->group("Input log");
-  app.add_option("--time-unit", options.time_unit,
+  app.add_option(std::string(FlagName(Option::kLogTimeUnit)),
+                 options.time_unit,
                  "Unit of the time column: s, ms, us, ns, index (sample number, "
                  "needs --rate) or auto (integers: detected from the spacing)")
       ->transform(OneOf(time_units))
       ->default_str("auto")
       ->group("Input log");
-  app.add_option("--rate", options.rate_hz,
+  app.add_option(std::string(FlagName(Option::kLogRate)),
+                 options.rate_hz,
                  "Sample rate (Hz) when the time column is a sample index or absent")
       ->check(PositiveNumber)
       ->group("Input log");
-  const std::vector<std::pair<std::string, std::string>> gyro_units{
-      {"rads", "rads"}, {"rad/s", "rads"}, {"dps", "dps"}, {"deg/s", "dps"},
-      {"counts", "counts"}};
+  const std::vector<std::pair<std::string, std::string>> gyro_units{{"rads", "rads"},
+                                                                    {"rad/s", "rads"},
+                                                                    {"dps", "dps"},
+                                                                    {"deg/s", "dps"},
+                                                                    {"counts", "counts"}};
   app.add_option_function<std::string>(
-         "--gyro-units",
+         std::string(FlagName(Option::kLogGyroUnits)),
          [&options](const std::string& unit) {
            options.gyro_in_dps = unit == "dps";
            options.gyro_in_counts = unit == "counts";
          },
-         "Units of the gyroscope columns: rads (rad/s, the default), dps (deg/s) or counts "
+         "Units of the gyroscope columns: rads (rad/s, the default), dps (deg/s) or "
+         "counts "
          "(raw ADC; zero measured at every position, scale found from the turns)")
       ->transform(OneOf(gyro_units))
       ->default_str("rads")
@@ -86,17 +101,20 @@ double GravityFlags::Resolve() const {
 }
 
 void AddGravityOptions(CLI::App& app, GravityFlags& flags) {
-  auto* g = app.add_option("--gravity", flags.gravity_mps2,
+  auto* g = app.add_option(std::string(FlagName(Option::kGravity)),
+                           flags.gravity_mps2,
                            "Local magnitude of gravity (m/s2); default 9.80665, "
                            "the standard value the paper uses")
                 ->check(CLI::Range(kMinGravityMps2, kMaxGravityMps2))
                 ->group("Gravity");
-  auto* lat = app.add_option("--latitude", flags.latitude_deg,
+  auto* lat = app.add_option(std::string(FlagName(Option::kLatitude)),
+                             flags.latitude_deg,
                              "Geodetic latitude of the site (deg): use the WGS84 "
                              "normal gravity there")
                   ->check(CLI::Range(-90.0, 90.0))
                   ->group("Gravity");
-  app.add_option("--height", flags.height_m,
+  app.add_option(std::string(FlagName(Option::kHeight)),
+                 flags.height_m,
                  "Ellipsoidal height of the site (m), with --latitude")
       ->needs(lat)
       ->group("Gravity");
@@ -108,67 +126,80 @@ void AddCalibrateOptions(CLI::App& app, CalibrateOptions& options) {
       {"shin-el-sheimy-9", ModelKind::kShinElSheimy9},
       {"bias-scale-6", ModelKind::kBiasScale6}};
   const std::vector<std::pair<std::string, RobustLoss>> losses{
-      {"none", RobustLoss::kNone}, {"huber", RobustLoss::kHuber},
+      {"none", RobustLoss::kNone},
+      {"huber", RobustLoss::kHuber},
       {"cauchy", RobustLoss::kCauchy}};
-  app.add_option("--counts-per-g", options.counts_per_g,
-                 "With --units counts: the datasheet's sensitivity (e.g. 16384 for an "
-                 "MPU-6050 at +-2 g), so that scale-factor errors and biases are relative to "
-                 "the datasheet, not to the fitted sphere; the calibration file records "
-                 "which (input.scale_reference)")
+  app.add_option(
+         "--counts-per-g",
+         options.counts_per_g,
+         "With --units counts: the datasheet's sensitivity (e.g. 16384 for an "
+         "MPU-6050 at +-2 g), so that scale-factor errors and biases are relative to "
+         "the datasheet, not to the fitted sphere; the calibration file records "
+         "which (input.scale_reference)")
       ->check(PositiveNumber)
       ->group("Estimation");
-  app.add_option("--model", options.solve.model,
+  app.add_option(std::string(FlagName(Option::kModel)),
+                 options.solve.model,
                  "Error model: shin-el-sheimy-9 (bias, scale, 3 non-orthogonality "
                  "angles; >= 10 positions) or bias-scale-6 (six-position protocol)")
       ->transform(OneOf(models))
       ->default_str("shin-el-sheimy-9")
       ->group("Estimation");
-  app.add_option("--robust", options.solve.robust,
+  app.add_option(std::string(FlagName(Option::kRobust)),
+                 options.solve.robust,
                  "Robust loss on the position residuals: none, huber or cauchy")
       ->transform(OneOf(losses))
       ->default_str("none")
       ->group("Estimation");
-  app.add_option("--window", options.detect.window_s,
+  app.add_option(std::string(FlagName(Option::kDetectWindow)),
+                 options.detect.window_s,
                  "Static detection: moving window of the motion statistic (s)")
       ->capture_default_str()
       ->check(PositiveNumber)
       ->group("Static detection");
-  app.add_option("--min-static", options.detect.min_static_s,
+  app.add_option(std::string(FlagName(Option::kDetectMinStatic)),
+                 options.detect.min_static_s,
                  "Static detection: shortest still position kept (s)")
       ->capture_default_str()
       ->check(PositiveNumber)
       ->group("Static detection");
-  app.add_option("--settle", options.detect.settle_s,
+  app.add_option(std::string(FlagName(Option::kDetectSettle)),
+                 options.detect.settle_s,
                  "Static detection: trimmed from each end of a position (s)")
       ->capture_default_str()
       ->check(NonNegativeNumber)
       ->group("Static detection");
-  app.add_option("--threshold", options.detect.threshold_factor,
+  app.add_option(std::string(FlagName(Option::kDetectThreshold)),
+                 options.detect.threshold_factor,
                  "Static detection: threshold as a multiple of the quiet level")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 100.0))
       ->group("Static detection");
-  app.add_option("--max-still", options.detect.max_still_g,
+  app.add_option(std::string(FlagName(Option::kDetectMaxStill)),
+                 options.detect.max_still_g,
                  "Static detection: nothing moving more than this (g) is still, whatever "
                  "the quiet level; 0 = no cap")
       ->capture_default_str()
       ->check(NonNegativeNumber)
       ->group("Static detection");
-  app.add_option("--merge-gap", options.detect.merge_gap_s,
+  app.add_option(std::string(FlagName(Option::kDetectMergeGap)),
+                 options.detect.merge_gap_s,
                  "Static detection: merge two positions at the same orientation across a "
                  "bump shorter than this (s)")
       ->capture_default_str()
       ->check(NonNegativeNumber)
       ->group("Static detection");
   app.add_option_function<double>(
-         "--range",
+         std::string(FlagName(Option::kSensorRange)),
          [&options](double g) { options.detect.range_mps2 = g * kStandardGravityMps2; },
-         "Static detection: measuring range of the sensor (g, e.g. 2 for ±2 g); positions "
+         "Static detection: measuring range of the sensor (g, e.g. 2 for ±2 g); "
+         "positions "
          "with readings at the limit are dropped with a warning. Default: the limit is "
          "found from runs of identical extreme readings")
       ->check(PositiveNumber)
       ->group("Static detection");
-  app.add_option("--merge-angle", options.detect.merge_angle_deg,
+  app.add_option(std::string(FlagName(Option::kDetectMergeAngle)),
+                 options.detect.merge_angle_deg,
                  "Static detection: ... and closer than this in orientation (deg)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 180.0))

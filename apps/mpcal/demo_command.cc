@@ -44,7 +44,8 @@ RepeatabilityResult DemoRepeatability(const SimulateStaticOptions& sim,
   const std::vector<SimulateStaticOptions> later = TrialOptions(sim, kTrials);
   for (int i = 1; i < kTrials; ++i) {
     const SimulatedSession session = SimulateStatic(later[static_cast<std::size_t>(i)]);
-    trials.push_back(CalibrateRecording(session.recording, CalibrateOptions{}).calibration);
+    trials.push_back(
+        CalibrateRecording(session.recording, CalibrateOptions{}).calibration);
   }
   return AnalyzeRepeatability(trials);
 }
@@ -71,35 +72,47 @@ void Run(const DemoFlags& f) {
   sim.device = FindPreset(f.preset);
   sim.seed = f.seed;
   const SimulatedSession session = SimulateStatic(sim);
-  fmt::print("mpcal demo: a simulated {} session, {} positions held {:.0f} s each at "
-             "{:.0f} Hz (seed {}), calibrated as 'mpcal calibrate' would.\n\n",
-             sim.device.name, session.directions.size(), sim.dwell_s, session.rate_hz,
-             f.seed);
+  fmt::print(
+      "mpcal demo: a simulated {} session, {} positions held {:.0f} s each at "
+      "{:.0f} Hz (seed {}), calibrated as 'mpcal calibrate' would.\n\n",
+      sim.device.name,
+      session.directions.size(),
+      sim.dwell_s,
+      session.rate_hz,
+      f.seed);
 
-  const CalibrateResult result = CalibrateRecording(session.recording, CalibrateOptions{});
-  const Eigen::Matrix<double, 9, 1> bound = SimulatedBoundSigma(session, sim.initial_rest_s);
+  const CalibrateResult result =
+      CalibrateRecording(session.recording, CalibrateOptions{});
+  const Eigen::Matrix<double, 9, 1> bound =
+      SimulatedBoundSigma(session, sim.initial_rest_s);
   const Eigen::Matrix<double, 9, 1> truth = ToVector(session.truth.model);
-  fmt::print("{}\n{}", FormatParameterTable(result.calibration,
-                                            {{"truth", truth}, {"bound 1σ", bound}}),
-             FormatFitSummary(result));
+  fmt::print(
+      "{}\n{}",
+      FormatParameterTable(result.calibration, {{"truth", truth}, {"bound 1σ", bound}}),
+      FormatFitSummary(result));
   const Eigen::Matrix<double, 9, 1> z =
       (ToVector(result.calibration.model) - truth).cwiseQuotient(bound);
-  fmt::print("RMS of (estimate - truth) / Cramér-Rao bound over the 9 parameters: {:.2f} "
-             "(an efficient estimator gives 1 on average)\n",
-             std::sqrt(z.squaredNorm() / 9.0));
+  fmt::print(
+      "RMS of (estimate - truth) / Cramér-Rao bound over the 9 parameters: {:.2f} "
+      "(an efficient estimator gives 1 on average)\n",
+      std::sqrt(z.squaredNorm() / 9.0));
   PrintWarnings(result.warnings);
 
   const RepeatabilityResult repeatability = DemoRepeatability(sim, result.calibration);
-  fmt::print("\nRepeatability over {} power-ups of this device (this session and {} more):\n{}",
-             kTrials, kTrials - 1, RepeatabilityVerdict(repeatability));
+  fmt::print(
+      "\nRepeatability over {} power-ups of this device (this session and {} more):\n{}",
+      kTrials,
+      kTrials - 1,
+      RepeatabilityVerdict(repeatability));
 
   const VerifyResult verification = DemoVerification(sim, result.calibration);
-  fmt::print("\nWalked loop against GNSS: the end lands {:.2f} m from the start with raw "
-             "readings, {:.2f} m corrected (reference {:.2f} m, path {:.0f} m).\n",
-             verification.raw.start_end_distance_m,
-             verification.corrected->start_end_distance_m,
-             verification.reference.start_end_distance_m,
-             verification.reference.path_length_m);
+  fmt::print(
+      "\nWalked loop against GNSS: the end lands {:.2f} m from the start with raw "
+      "readings, {:.2f} m corrected (reference {:.2f} m, path {:.0f} m).\n",
+      verification.raw.start_end_distance_m,
+      verification.corrected->start_end_distance_m,
+      verification.reference.start_end_distance_m,
+      verification.reference.path_length_m);
 
   std::filesystem::create_directories(f.output_dir);
   const std::string truth_path = f.output_dir + "/truth.json";
@@ -114,11 +127,14 @@ void Run(const DemoFlags& f) {
   report.session = ReportSession{session.recording, result.detection};
   report.repeatability = repeatability;
   report.verification = SummarizeVerification(verification);
-  report.input_files = {{"Calibration file", calib_path}, {"Truth (simulated)", truth_path}};
-  report.command_line = fmt::format("mpcal demo --preset {} --seed {} --output-dir {}",
-                                    f.preset, f.seed, f.output_dir);
+  report.input_files = {{"Calibration file", calib_path},
+                        {"Truth (simulated)", truth_path}};
+  report.command_line = fmt::format(
+      "mpcal demo --preset {} --seed {} --output-dir {}", f.preset, f.seed, f.output_dir);
   WriteReport(report_path, report);
-  fmt::print("\nwrote {}, {} and {} (open it in a browser)\n", calib_path, truth_path,
+  fmt::print("\nwrote {}, {} and {} (open it in a browser)\n",
+             calib_path,
+             truth_path,
              report_path);
 }
 
@@ -133,7 +149,8 @@ void AddDemoCommand(CLI::App& root) {
   app->add_option("--preset", flags->preset, "Device: colibri, inertiacube3 or mti-g")
       ->capture_default_str();
   app->add_option("--seed", flags->seed, "Random seed")->capture_default_str();
-  app->add_option("--output-dir", flags->output_dir,
+  app->add_option("--output-dir",
+                  flags->output_dir,
                   "Where the calibration, the truth and the report go")
       ->capture_default_str();
   app->footer("Example:\n  mpcal demo --preset colibri --seed 7");

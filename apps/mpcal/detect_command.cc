@@ -210,10 +210,9 @@ void AddDetectCommand(CLI::App& root) {
       "whether they are enough to calibrate (exit 0) or what to record next (exit 1)");
   app->add_option("INPUT", flags->input, "Log: CSV or text, '-' for standard input")
       ->required();
-  app->add_option(
-      "--json",
-      flags->json,
-      "Also write the intervals and the coverage as JSON (mpcal.detection/1)")
+  app->add_option("--json",
+                  flags->json,
+                  "Also write the intervals and the coverage as JSON (mpcal.detection/1)")
       ->check(OutputPath);
   AddLogOptions(*app, flags->log);
   AddGravityOptions(*app, flags->gravity);

@@ -12,9 +12,14 @@ namespace {
 constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 constexpr const char* kAxis = "xyz";
 
-std::string Row(const std::string& label, double value, std::optional<double> sigma,
-                std::optional<double> extra, const char* unit) {
-  std::string out = fmt::format("{:<22} {:>12.3f} {:>10}", label, value,
+std::string Row(const std::string& label,
+                double value,
+                std::optional<double> sigma,
+                std::optional<double> extra,
+                const char* unit) {
+  std::string out = fmt::format("{:<22} {:>12.3f} {:>10}",
+                                label,
+                                value,
                                 sigma ? fmt::format("{:.3f}", *sigma) : "-");
   if (extra) out += fmt::format(" {:>12.3f}", *extra);
   return out + fmt::format("  {}\n", unit);
@@ -22,7 +27,8 @@ std::string Row(const std::string& label, double value, std::optional<double> si
 
 }  // namespace
 
-std::string FormatGyroTable(const GyroCalibration& g, const GyroCalibration* extra,
+std::string FormatGyroTable(const GyroCalibration& g,
+                            const GyroCalibration* extra,
                             const std::string& extra_title) {
   const bool has_std = g.m_covariance.has_value();
   const Eigen::Matrix3d s = g.MStd();
@@ -32,63 +38,91 @@ std::string FormatGyroTable(const GyroCalibration& g, const GyroCalibration* ext
   auto opt = [&](double v) { return has_std ? std::optional(v) : std::nullopt; };
   auto ext = [&](double v) { return extra ? std::optional(v) : std::nullopt; };
   for (int i = 0; i < 3; ++i) {
-    out += Row(fmt::format("scale-factor error {}", kAxis[i]), (g.m(i, i) - 1.0) * 1e6,
-               opt(s(i, i) * 1e6), extra ? ext((extra->m(i, i) - 1.0) * 1e6) : std::nullopt,
+    out += Row(fmt::format("scale-factor error {}", kAxis[i]),
+               (g.m(i, i) - 1.0) * 1e6,
+               opt(s(i, i) * 1e6),
+               extra ? ext((extra->m(i, i) - 1.0) * 1e6) : std::nullopt,
                "ppm");
   }
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) {
       if (r == c) continue;
-      out += Row(fmt::format("misalignment m_{}{}", kAxis[r], kAxis[c]), g.m(r, c) * 1e3,
-                 opt(s(r, c) * 1e3), extra ? ext(extra->m(r, c) * 1e3) : std::nullopt, "mrad");
+      out += Row(fmt::format("misalignment m_{}{}", kAxis[r], kAxis[c]),
+                 g.m(r, c) * 1e3,
+                 opt(s(r, c) * 1e3),
+                 extra ? ext(extra->m(r, c) * 1e3) : std::nullopt,
+                 "mrad");
     }
   }
   const Eigen::Vector3d change = g.BiasChangeRadps();
   for (int i = 0; i < 3; ++i) {
-    out += Row(fmt::format("bias {} (mean)", kAxis[i]), g.bias_radps[i] * kDegPerRad,
+    out += Row(fmt::format("bias {} (mean)", kAxis[i]),
+               g.bias_radps[i] * kDegPerRad,
                g.bias_std_radps ? std::optional((*g.bias_std_radps)[i] * kDegPerRad)
                                 : std::nullopt,
-               extra ? ext(extra->bias_radps[i] * kDegPerRad) : std::nullopt, "deg/s");
+               extra ? ext(extra->bias_radps[i] * kDegPerRad) : std::nullopt,
+               "deg/s");
   }
   if (!g.position_bias.empty()) {
     out += fmt::format(
-        "bias measured at {} positions; its change over the session (max - min) x, y, z = "
+        "bias measured at {} positions; its change over the session (max - min) x, y, z "
+        "= "
         "{:.4f}, {:.4f}, {:.4f} deg/s\n",
-        g.position_bias.size(), change.x() * kDegPerRad, change.y() * kDegPerRad,
+        g.position_bias.size(),
+        change.x() * kDegPerRad,
+        change.y() * kDegPerRad,
         change.z() * kDegPerRad);
   }
   if (g.g_sensitivity_radps_per_mps2) {
     // deg/s per g, rows x, y, z.
-    const Eigen::Matrix3d gs = *g.g_sensitivity_radps_per_mps2 * kDegPerRad * kStandardGravityMps2;
+    const Eigen::Matrix3d gs =
+        *g.g_sensitivity_radps_per_mps2 * kDegPerRad * kStandardGravityMps2;
     out += fmt::format(
         "bias g-sensitivity G (deg/s per g; bias = b + G f, the bias above without G f): "
         "[{:.4f} {:.4f} {:.4f}; {:.4f} {:.4f} {:.4f}; {:.4f} {:.4f} {:.4f}]\n",
-        gs(0, 0), gs(0, 1), gs(0, 2), gs(1, 0), gs(1, 1), gs(1, 2), gs(2, 0), gs(2, 1), gs(2, 2));
+        gs(0, 0),
+        gs(0, 1),
+        gs(0, 2),
+        gs(1, 0),
+        gs(1, 1),
+        gs(1, 2),
+        gs(2, 0),
+        gs(2, 1),
+        gs(2, 2));
   }
   if (g.input_units == GyroUnits::kCounts) {
     out += fmt::format(
-        "gyroscope readings in counts, scaled by the nominal {:.6g} rad/s per count (bias x, "
+        "gyroscope readings in counts, scaled by the nominal {:.6g} rad/s per count "
+        "(bias x, "
         "y, z = {:.1f}, {:.1f}, {:.1f} counts)\n",
-        g.radps_per_unit, g.bias_radps.x() / g.radps_per_unit,
-        g.bias_radps.y() / g.radps_per_unit, g.bias_radps.z() / g.radps_per_unit);
+        g.radps_per_unit,
+        g.bias_radps.x() / g.radps_per_unit,
+        g.bias_radps.y() / g.radps_per_unit,
+        g.bias_radps.z() / g.radps_per_unit);
   }
   return out;
 }
 
 std::string FormatGyroSummary(const GyroResult& r) {
-  std::string out = fmt::format("gyroscope: {} turns between the positions", r.turns.size());
+  std::string out =
+      fmt::format("gyroscope: {} turns between the positions", r.turns.size());
   if (!r.calibration.fit) return out + fmt::format("; {}\n", ToString(r.status));
   const GyroFitSummary& f = *r.calibration.fit;
   out += fmt::format(
-      "; {} after {} iterations; gravity carried over each turn vs measured after it, tilt "
+      "; {} after {} iterations; gravity carried over each turn vs measured after it, "
+      "tilt "
       "RMS {:.3f} deg before (nominal scale, bias at every position), {:.3f} deg after\n",
-      ToString(r.status), f.iterations, f.residual_rms_before_rad * kDegPerRad,
+      ToString(r.status),
+      f.iterations,
+      f.residual_rms_before_rad * kDegPerRad,
       f.residual_rms_after_rad * kDegPerRad);
   out += fmt::format(
-      "gyroscope quality: variance factor {:.3g} (1 = turn residuals as the gyroscope and "
+      "gyroscope quality: variance factor {:.3g} (1 = turn residuals as the gyroscope "
+      "and "
       "accelerometer noise explain); noise at rest {:.3g} deg/s per sample; bias "
       "g-sensitivity {} (F = {:.3g})\n",
-      f.variance_factor, f.noise_std_radps * kDegPerRad,
+      f.variance_factor,
+      f.noise_std_radps * kDegPerRad,
       r.calibration.g_sensitivity_radps_per_mps2 ? "modelled" : "not modelled",
       r.g_sensitivity_f);
   if (!r.converged()) out += fmt::format("gyroscope solver: {}\n", r.message);
@@ -99,7 +133,8 @@ std::vector<std::string> GyroFindingMessages(const GyroResult& r) {
   std::vector<std::string> out;
   for (const GyroFinding& f : r.findings) {
     std::vector<std::string> names;
-    for (int p : f.parameters) names.emplace_back(kGyroParameterNames[static_cast<std::size_t>(p)]);
+    for (int p : f.parameters)
+      names.emplace_back(kGyroParameterNames[static_cast<std::size_t>(p)]);
     std::vector<std::string> axes;
     for (int a = 0; a < 3; ++a) {
       if (f.turn_axes[static_cast<std::size_t>(a)]) axes.emplace_back(1, kAxis[a]);
@@ -108,21 +143,31 @@ std::vector<std::string> GyroFindingMessages(const GyroResult& r) {
       case GyroFindingKind::kTooFewTurns:
         out.push_back(fmt::format(
             "gyroscope not calibrated: {:.0f} turns between static positions give {:.0f} "
-            "equations for the 9 entries of M; record at least {:.0f} turns, about the x, y "
+            "equations for the 9 entries of M; record at least {:.0f} turns, about the "
+            "x, y "
             "and z axes",
-            f.value, 2 * f.value, f.limit));
+            f.value,
+            2 * f.value,
+            f.limit));
         break;
       case GyroFindingKind::kUndetermined:
         out.push_back(fmt::format(
-            "gyroscope not calibrated: the turns do not determine {} (1σ {:.2g}); add turns "
+            "gyroscope not calibrated: the turns do not determine {} (1σ {:.2g}); add "
+            "turns "
             "of 45-90 degrees about the {} axis of the sensor between positions",
-            fmt::join(names, ", "), f.value, fmt::join(axes, " and ")));
+            fmt::join(names, ", "),
+            f.value,
+            fmt::join(axes, " and ")));
         break;
       case GyroFindingKind::kPoorlyDetermined:
-        out.push_back(fmt::format(
-            "gyroscope: {} poorly determined (1σ up to {:.2g}, above {:.2g}); add turns about "
-            "the {} axis of the sensor",
-            fmt::join(names, ", "), f.value, f.limit, fmt::join(axes, " and ")));
+        out.push_back(
+            fmt::format("gyroscope: {} poorly determined (1σ up to {:.2g}, above "
+                        "{:.2g}); add turns about "
+                        "the {} axis of the sensor",
+                        fmt::join(names, ", "),
+                        f.value,
+                        f.limit,
+                        fmt::join(axes, " and ")));
         break;
     }
   }

@@ -15,7 +15,8 @@
 namespace mpcal::cli {
 
 /// An optional column beside the estimate (the truth, say), as a calibration.
-std::string FormatGyroTable(const GyroCalibration& gyro, const GyroCalibration* extra = nullptr,
+std::string FormatGyroTable(const GyroCalibration& gyro,
+                            const GyroCalibration* extra = nullptr,
                             const std::string& extra_title = "");
 
 /// Turns, convergence and the RMS tilt before/after, a few lines.

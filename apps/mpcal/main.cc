@@ -11,11 +11,12 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "calibration_table.h"
 #include "command.h"
+#include "explain.h"
 #include "mpcal/error.h"
 
 namespace {
@@ -90,7 +91,8 @@ namespace {
 int Run(int argc, char** argv) {
   CLI::App app{
       "mpcal: field calibration of MEMS accelerometers by the multi-position method.\n"
-      "Hold the sensor still in ~26 orientations; gravity's magnitude is the only reference.",
+      "Hold the sensor still in ~26 orientations; gravity's magnitude is the only "
+      "reference.",
       "mpcal"};
   app.set_version_flag("--version", std::string("mpcal ") + MPCAL_VERSION);
   app.require_subcommand(1);
@@ -118,11 +120,12 @@ int Run(int argc, char** argv) {
     return 2;
   }
   if (const std::string word = argv[1];
-      !word.empty() && word.front() != '-' && root.get_subcommands([&](const CLI::App* sub) {
-        return sub->check_name(word);
-      }).empty()) {
+      !word.empty() && word.front() != '-' &&
+      root.get_subcommands([&](const CLI::App* sub) { return sub->check_name(word); })
+          .empty()) {
     PrintError(fmt::format(
-        "'{}' is not an mpcal subcommand; the subcommands are {} (run 'mpcal --help')", word,
+        "'{}' is not an mpcal subcommand; the subcommands are {} (run 'mpcal --help')",
+        word,
         names));
     return 2;
   }
@@ -144,7 +147,7 @@ int Run(int argc, char** argv) {
   } catch (const mpcal::cli::ExitCode& e) {
     return e.code;
   } catch (const mpcal::Error& e) {
-    PrintError(e.what());
+    PrintError(mpcal::cli::Explain(e));
     return 1;
   } catch (const std::bad_alloc&) {
     PrintError("out of memory; the input is larger than this machine can hold");

@@ -74,7 +74,8 @@ class SpooledInput {
     spool_ = std::tmpfile();
     if (spool_ == nullptr) {
       ::close(in);
-      throw Error(fmt::format("cannot read '{}': no room for a temporary copy ({})", path,
+      throw Error(fmt::format("cannot read '{}': no room for a temporary copy ({})",
+                              path,
                               std::strerror(errno)));
     }
     Copy(in);
@@ -110,7 +111,8 @@ class SpooledInput {
       if (n <= 0) break;
       const auto size = static_cast<std::size_t>(n);
       if (std::fwrite(buffer.data(), 1, size, spool_) != size) {
-        throw Error(fmt::format("cannot read '{}': the temporary copy failed ({})", path_,
+        throw Error(fmt::format("cannot read '{}': the temporary copy failed ({})",
+                                path_,
                                 std::strerror(errno)));
       }
       // Binary data (a pipe from /dev/urandom) is not copied to the end:
@@ -126,7 +128,8 @@ class SpooledInput {
 };
 
 // `path` is read; `name`, the input as the user gave it, is in messages.
-Calibration CalibrateSession(const std::string& path, const std::string& name,
+Calibration CalibrateSession(const std::string& path,
+                             const std::string& name,
                              RepeatFlags& f) {
   TerminalProgress progress("reading " + name);
   f.log.progress = progress.Callback();
@@ -166,7 +169,8 @@ void Run(RepeatFlags& f) {
         fs::weakly_canonical(fs::absolute(f.csv, ec), ec)) {
       throw Error(fmt::format(
           "--json and --csv both name '{}': one would overwrite the other; give each its "
-          "own file", f.json));
+          "own file",
+          f.json));
     }
   }
   for (const std::string& out : {f.json, f.csv}) {
@@ -189,7 +193,8 @@ void Run(RepeatFlags& f) {
     try {
       if (IsCalibrationFile(input.readable())) {
         trials.push_back(ReadCalibrationFile(input.readable()));
-        fmt::print("  {}: calibration file{}\n", path, trials.back().std ? "" : " (no 1σ)");
+        fmt::print(
+            "  {}: calibration file{}\n", path, trials.back().std ? "" : " (no 1σ)");
       } else {
         trials.push_back(CalibrateSession(input.readable(), path, f));
       }
@@ -226,8 +231,9 @@ void AddRepeatCommand(CLI::App& root) {
                   "Two or more sessions of one device: logs (calibrated here with the "
                   "options below) or calibration files (JSON from 'mpcal calibrate')")
       ->required();
-  app->add_option(
-      "--json", flags->json, "Write the table as JSON (mpcal.repeatability/1, SI units)")
+  app->add_option("--json",
+                  flags->json,
+                  "Write the table as JSON (mpcal.repeatability/1, SI units)")
       ->check(OutputPath);
   app->add_option("--csv", flags->csv, "Write the table as CSV (SI units)")
       ->check(OutputPath);

@@ -9,6 +9,7 @@
 
 #include "cli_options.h"
 #include "command.h"
+#include "explain.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/error.h"
@@ -61,8 +62,12 @@ void Run(const ReportFlags& f) {
     throw Error("--verify-trajectories needs --verify (the result they belong to)");
   }
   ThrowIfInvalid(f.files.Validate(), "mpcal report");
-  CheckOutput(f.output, {f.files.calibration, f.files.session, f.files.repeatability,
-                         f.files.verification, f.files.noise});
+  CheckOutput(f.output,
+              {f.files.calibration,
+               f.files.session,
+               f.files.repeatability,
+               f.files.verification,
+               f.files.noise});
   ReportInputs inputs = LoadReportInputs(f.files);
   // A counts log read as m/s² would plot ±20,000 "m/s²": calibrate's check.
   if (inputs.session) CheckUnits(inputs.session->recording, kStandardGravityMps2);
@@ -99,13 +104,15 @@ void AddReportCommand(CLI::App& root) {
                   "Repeatability table from 'mpcal repeat --json'");
   cmd->add_option(
       "--verify", f->files.verification, "Verification result from 'mpcal verify -o'");
-  cmd->add_option("--verify-trajectories",
+  cmd->add_option(std::string(FlagName(Option::kVerifyTrajectories)),
                   f->files.verification_trajectories,
                   "PREFIX given to 'mpcal verify --trajectory-csv': plots "
                   "PREFIX-reference.csv, PREFIX-raw.csv, PREFIX-corrected.csv");
-  cmd->add_option("--noise", f->files.noise,
-                  "Noise analysis from 'mpcal noise --json': Allan deviation of each axis "
-                  "with its band and fitted terms, the terms table");
+  cmd->add_option(
+      "--noise",
+      f->files.noise,
+      "Noise analysis from 'mpcal noise --json': Allan deviation of each axis "
+      "with its band and fitted terms, the terms table");
   cmd->add_option(
          "-o,--output", f->output, "The HTML file to write ('-': standard output)")
       ->check(OutputPath)

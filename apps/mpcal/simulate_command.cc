@@ -13,6 +13,7 @@
 
 #include "cli_options.h"
 #include "command.h"
+#include "explain.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibration_file.h"
 #include "mpcal/error.h"
@@ -81,7 +82,8 @@ SimulateStaticOptions ToOptions(const SimulateStaticFlags& f) {
   o.gyro = f.gyro;
   o.gyro_units = *ParseGyroUnits(f.gyro_units);
   o.gyro_counts_per_radps = f.gyro_counts_per_radps;
-  if (f.gyro_noise_density) o.gyro_noise_density_radps_per_sqrt_hz = *f.gyro_noise_density;
+  if (f.gyro_noise_density)
+    o.gyro_noise_density_radps_per_sqrt_hz = *f.gyro_noise_density;
   o.earth_rate_latitude_deg = f.earth_rate_latitude_deg;
   if (f.noise_density) o.device.noise_density_mps2_per_sqrt_hz = *f.noise_density;
   if (f.turn_on_spread_g.size() == 1) {
@@ -99,8 +101,9 @@ SimulateStaticOptions ToOptions(const SimulateStaticFlags& f) {
   if (f.bias_drift_mps2_per_s.size() == 1) {
     o.bias_drift_mps2_per_s.setConstant(f.bias_drift_mps2_per_s[0]);
   } else if (f.bias_drift_mps2_per_s.size() == 3) {
-    o.bias_drift_mps2_per_s = Eigen::Vector3d(
-        f.bias_drift_mps2_per_s[0], f.bias_drift_mps2_per_s[1], f.bias_drift_mps2_per_s[2]);
+    o.bias_drift_mps2_per_s = Eigen::Vector3d(f.bias_drift_mps2_per_s[0],
+                                              f.bias_drift_mps2_per_s[1],
+                                              f.bias_drift_mps2_per_s[2]);
   } else if (!f.bias_drift_mps2_per_s.empty()) {
     throw Error(fmt::format("--bias-drift takes one value or three (x,y,z), got {}",
                             f.bias_drift_mps2_per_s.size()));
@@ -179,7 +182,10 @@ void Run(const SimulateStaticFlags& f) {
         options.turn_s,
         options.initial_rest_s,
         units,
-        options.gyro ? (options.gyro_units == GyroUnits::kCounts ? " with gyroscope (counts)" : " with gyroscope (rad/s)") : "",
+        options.gyro
+            ? (options.gyro_units == GyroUnits::kCounts ? " with gyroscope (counts)"
+                                                        : " with gyroscope (rad/s)")
+            : "",
         s.noise_std_mps2.x(),
         options.device.noise_density_mps2_per_sqrt_hz,
         s.quantisation_step_mps2 > 0
@@ -326,13 +332,16 @@ void AddSimulateStaticCommand(CLI::App& simulate) {
                   "default: the paper's spread over its three trials")
       ->delimiter(',')
       ->group("Session");
-  app->add_option("--bias-drift",
-                  f->bias_drift_mps2_per_s,
-                  "A bias drifting linearly over the session (m/s2 per second), one value or "
-                  "x,y,z, reaching the device's bias at the last sample (a warm-up)")
+  app->add_option(
+         "--bias-drift",
+         f->bias_drift_mps2_per_s,
+         "A bias drifting linearly over the session (m/s2 per second), one value or "
+         "x,y,z, reaching the device's bias at the last sample (a warm-up)")
       ->delimiter(',')
       ->group("Session");
-  app->add_option("--rate", f->rate_hz, "Sample rate (Hz); default the device's")
+  app->add_option(std::string(FlagName(Option::kLogRate)),
+                  f->rate_hz,
+                  "Sample rate (Hz); default the device's")
       ->check(PositiveNumber)
       ->group("Sensor");
   app->add_option("--noise-density",
@@ -341,11 +350,12 @@ void AddSimulateStaticCommand(CLI::App& simulate) {
                   "default the device's")
       ->check(NonNegativeNumber)
       ->group("Sensor");
-  app->add_option("--units",
+  app->add_option(std::string(FlagName(Option::kLogUnits)),
                   f->units,
                   "Units written: mps2, g (9.80665 m/s2) or counts (integers: "
                   "offset + reading·counts-per-mps2)")
-      ->transform(OneOf<std::string>({{"mps2", "mps2"}, {"g", "g"}, {"counts", "counts"}}))
+      ->transform(
+          OneOf<std::string>({{"mps2", "mps2"}, {"g", "g"}, {"counts", "counts"}}))
       ->capture_default_str()
       ->group("Sensor");
   app->add_option(
@@ -356,27 +366,33 @@ void AddSimulateStaticCommand(CLI::App& simulate) {
   app->add_option("--counts-offset", f->counts_offset, "ADC zero, with --units counts")
       ->capture_default_str()
       ->group("Sensor");
-  app->add_flag("--gyro", f->gyro,
-                "Also write gyroscope columns gx,gy,gz with the device's gyroscope errors "
-                "(scale, misalignment, bias with a slow random walk, white noise); the truth "
-                "file becomes an IMU file (mpcal.imu/1) with them")
+  app->add_flag(
+         "--gyro",
+         f->gyro,
+         "Also write gyroscope columns gx,gy,gz with the device's gyroscope errors "
+         "(scale, misalignment, bias with a slow random walk, white noise); the truth "
+         "file becomes an IMU file (mpcal.imu/1) with them")
       ->group("Sensor");
-  app->add_option("--gyro-units", f->gyro_units,
+  app->add_option(std::string(FlagName(Option::kLogGyroUnits)),
+                  f->gyro_units,
                   "Units of the gyroscope columns: rads or counts (integers: 32768 + "
                   "reading·gyro-counts-per-radps)")
       ->transform(OneOf<std::string>({{"rads", "rads"}, {"counts", "counts"}}))
       ->capture_default_str()
       ->group("Sensor");
-  app->add_option("--gyro-counts-per-radps", f->gyro_counts_per_radps,
+  app->add_option("--gyro-counts-per-radps",
+                  f->gyro_counts_per_radps,
                   "Gyroscope ADC sensitivity, with --gyro-units counts")
       ->capture_default_str()
       ->check(PositiveNumber)
       ->group("Sensor");
-  app->add_option("--gyro-noise-density", f->gyro_noise_density,
+  app->add_option("--gyro-noise-density",
+                  f->gyro_noise_density,
                   "Gyroscope white-noise density (rad/s/√Hz); default the device's")
       ->check(NonNegativeNumber)
       ->group("Sensor");
-  app->add_option("--earth-rate", f->earth_rate_latitude_deg,
+  app->add_option("--earth-rate",
+                  f->earth_rate_latitude_deg,
                   "Add the Earth's rotation at this latitude (deg) to the gyroscope")
       ->check(CLI::Range(-90.0, 90.0))
       ->group("Sensor");
@@ -395,7 +411,8 @@ void AddSimulateStaticCommand(CLI::App& simulate) {
       "  mpcal simulate static --preset colibri --units g --trials 3 -o s.csv --truth "
       "t.json\n"
       "    (writes s_1.csv s_2.csv s_3.csv and t_1.json t_2.json t_3.json)\n"
-      "  mpcal simulate static --preset colibri --gyro -o imu.csv --truth imu_truth.json\n"
+      "  mpcal simulate static --preset colibri --gyro -o imu.csv --truth "
+      "imu_truth.json\n"
       "  mpcal simulate static --preset mti-g --bias-drift 2e-4 -o warm.csv --truth "
       "warm.json\n"
       "    (a bias warming up by 2e-4 m/s2 per second; calibrate fits the drift)");

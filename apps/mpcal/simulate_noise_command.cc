@@ -11,6 +11,7 @@
 
 #include "cli_options.h"
 #include "command.h"
+#include "explain.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/error.h"
 #include "mpcal/noise_file.h"
@@ -121,7 +122,7 @@ void AddSimulateNoiseCommand(CLI::App& simulate) {
   app->add_option("--hours", f->hours, "Length of the record (h)")
       ->capture_default_str()
       ->check(PositiveNumber);
-  app->add_option("--rate", f->rate_hz, "Sample rate (Hz)")
+  app->add_option(std::string(FlagName(Option::kLogRate)), f->rate_hz, "Sample rate (Hz)")
       ->capture_default_str()
       ->check(PositiveNumber);
   app->add_option("--seed", f->seed, "Random seed; the same seed gives the same record")

@@ -14,6 +14,7 @@
 
 #include "cli_options.h"
 #include "command.h"
+#include "explain.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibration_file.h"
 #include "mpcal/error.h"
@@ -184,7 +185,9 @@ void AddSimulateWalkCommand(CLI::App& simulate) {
                   "Tilt of the sensor's z axis from the vertical (deg)")
       ->capture_default_str()
       ->group("Walk");
-  app->add_option("--rate", o.rate_hz, "IMU rate (Hz); default the device's")
+  app->add_option(std::string(FlagName(Option::kLogRate)),
+                  o.rate_hz,
+                  "IMU rate (Hz); default the device's")
       ->check(PositiveNumber)
       ->group("Sensor");
   app->add_option("--noise-density",

@@ -14,6 +14,7 @@
 #include "calibration_table.h"
 #include "cli_options.h"
 #include "command.h"
+#include "explain.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/calibration_file.h"
@@ -199,15 +200,15 @@ void AddVerifyCommand(CLI::App& root) {
       ->check(OutputPath)
       ->required();
   cmd->add_option(
-      "--trajectory-csv",
-      f->trajectory_prefix,
-      "Also write PREFIX-reference.csv, PREFIX-raw.csv and PREFIX-corrected.csv "
-      "(t_s,e_m,n_m,u_m on the reference's clock and frame) for plotting")
+         "--trajectory-csv",
+         f->trajectory_prefix,
+         "Also write PREFIX-reference.csv, PREFIX-raw.csv and PREFIX-corrected.csv "
+         "(t_s,e_m,n_m,u_m on the reference's clock and frame) for plotting")
       ->check(OutputPath);
-  const std::vector<std::pair<std::string, MountMode>> mounts{{"level", MountMode::kLevel},
-                                                {"z-up", MountMode::kZUp}};
+  const std::vector<std::pair<std::string, MountMode>> mounts{
+      {"level", MountMode::kLevel}, {"z-up", MountMode::kZUp}};
   cmd->add_option(
-         "--mount",
+         std::string(FlagName(Option::kMount)),
          f->options.integrate.mount,
          "Initial attitude: level (from the initial rest; absorbs a constant bias "
          "while the sensor does not rotate) or z-up (the sensor's z axis along an "
@@ -244,22 +245,23 @@ void AddVerifyCommand(CLI::App& root) {
       {"offset", TimeAlignMode::kOffset},
       {"motion", TimeAlignMode::kMotionStart}};
   cmd->add_option(
-         "--time-align",
+         std::string(FlagName(Option::kTimeAlign)),
          f->options.time_align,
          "Clocks: common (one clock), offset (--time-offset), motion (from the start "
          "of motion in both) or auto (common when the spans overlap, else motion)")
       ->transform(OneOf(aligns))
       ->default_str("auto")
       ->group("Time");
-  cmd->add_option("--time-offset",
+  cmd->add_option(std::string(FlagName(Option::kTimeOffset)),
                   f->time_offset_s,
                   "t_reference = t_imu + SECONDS (e.g. 18 for a UTC log against GPST)")
       ->group("Time");
-  const std::vector<std::pair<std::string, GnssFormat>> formats{{"auto", GnssFormat::kAuto},
-                                                  {"pos", GnssFormat::kRtklibPos},
-                                                  {"nmea", GnssFormat::kNmea},
-                                                  {"csv", GnssFormat::kCsv}};
-  cmd->add_option("--gnss-format",
+  const std::vector<std::pair<std::string, GnssFormat>> formats{
+      {"auto", GnssFormat::kAuto},
+      {"pos", GnssFormat::kRtklibPos},
+      {"nmea", GnssFormat::kNmea},
+      {"csv", GnssFormat::kCsv}};
+  cmd->add_option(std::string(FlagName(Option::kGnssFormat)),
                   f->gnss_options.format,
                   "Format of the reference: auto, pos, nmea or csv")
       ->transform(OneOf(formats))

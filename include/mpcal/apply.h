@@ -64,7 +64,8 @@ class GyroCorrector {
   GyroCorrector(const GyroCalibration& gyro, GyroUnits log_units, GyroUnits out_units);
   /// `f_mps2`: the specific force at that sample (m/s²), for the bias's
   /// g-sensitivity when the calibration models it.
-  Eigen::Vector3d operator()(const Eigen::Vector3d& reading, const Eigen::Vector3d& f_mps2) const {
+  Eigen::Vector3d operator()(const Eigen::Vector3d& reading,
+                             const Eigen::Vector3d& f_mps2) const {
     return matrix_ * reading - offset_ - g_term_ * f_mps2;
   }
 
@@ -117,7 +118,9 @@ struct ApplyResult {
 /// \throws mpcal::Error for invalid options, a calibration that does not
 ///   apply to the log's units, `output` naming the input, any error of
 ///   LogScanner (no partial output file is left), or a write failure.
-ApplyResult ApplyCalibration(const Calibration& calibration, const std::string& input,
-                             const std::string& output, const ApplyOptions& options);
+ApplyResult ApplyCalibration(const Calibration& calibration,
+                             const std::string& input,
+                             const std::string& output,
+                             const ApplyOptions& options);
 
 }  // namespace mpcal

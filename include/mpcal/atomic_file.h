@@ -36,8 +36,8 @@ void WriteStreamAtomically(const std::string& path,
 
 /// Checks, before any work, that `path` can be written: not a directory, in
 /// a directory that exists and is writable (a device or FIFO: writable; "-"
-/// and /dev/stdout: standard output open), so that a long run does not end in an error that loses its result.
-/// \throws mpcal::Error naming the path and what to do.
+/// and /dev/stdout: standard output open), so that a long run does not end in an error
+/// that loses its result. \throws mpcal::Error naming the path and what to do.
 void CheckWritable(const std::string& path);
 
 /// Refuses (throws mpcal::Error) when `output` names the same file as

@@ -17,8 +17,8 @@
 namespace mpcal {
 
 struct BoundPosition {
-  Eigen::Vector3d direction;        ///< unit vector of gravity reaction (sensor frame, true)
-  Eigen::Vector3d noise_std_mps2;   ///< per-sample white-noise σ of each axis
+  Eigen::Vector3d direction;  ///< unit vector of gravity reaction (sensor frame, true)
+  Eigen::Vector3d noise_std_mps2;  ///< per-sample white-noise σ of each axis
   std::size_t samples = 0;
   /// The middle of the position from the drift's reference time (s); only
   /// CramerRaoBoundWithDrift uses it.
@@ -38,7 +38,9 @@ Eigen::Matrix<double, 9, 9> CramerRaoBound(const ErrorModel& truth,
 /// t_ref), and the three rates d are estimated too: the bound of the packed
 /// parameters (the bias at t_ref) with d eliminated.
 Eigen::Matrix<double, 9, 9> CramerRaoBoundWithDrift(
-    const ErrorModel& truth, std::span<const BoundPosition> positions, double gravity_mps2,
+    const ErrorModel& truth,
+    std::span<const BoundPosition> positions,
+    double gravity_mps2,
     ModelKind model = ModelKind::kShinElSheimy9);
 
 }  // namespace mpcal

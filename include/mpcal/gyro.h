@@ -170,7 +170,8 @@ struct GyroResult {
 ///   interval lies outside it, or the options are invalid.
 GyroResult CalibrateGyroscope(const Recording& recording,
                               std::span<const StaticInterval> intervals,
-                              const Calibration& accel, const GyroOptions& options);
+                              const Calibration& accel,
+                              const GyroOptions& options);
 
 /// The Cramér-Rao bound of M (9×9 covariance, row-major) for this session:
 /// the inverse of the Fisher information JᵀWJ at `truth` (its M, bias
@@ -189,7 +190,9 @@ Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const Recording& recording,
 /// frame at `begin` (so a fixed direction u seen at begin is Rᵀ u at end).
 /// \throws mpcal::Error when the range is outside the recording or the
 ///   recording has no gyroscope.
-Eigen::Matrix3d IntegrateRotation(const Recording& recording, std::size_t begin,
-                                  std::size_t end, const GyroCalibration& gyro);
+Eigen::Matrix3d IntegrateRotation(const Recording& recording,
+                                  std::size_t begin,
+                                  std::size_t end,
+                                  const GyroCalibration& gyro);
 
 }  // namespace mpcal

@@ -86,7 +86,8 @@ struct GyroCalibration {
   }
   /// The same with the specific force `f_mps2` sensed at that sample, for
   /// the g-sensitivity when it is modelled.
-  Eigen::Vector3d Correct(const Eigen::Vector3d& reading, const Eigen::Vector3d& f_mps2) const {
+  Eigen::Vector3d Correct(const Eigen::Vector3d& reading,
+                          const Eigen::Vector3d& f_mps2) const {
     Eigen::Vector3d b = bias_radps;
     if (g_sensitivity_radps_per_mps2) b += *g_sensitivity_radps_per_mps2 * f_mps2;
     return m * (reading * radps_per_unit - b);
@@ -95,7 +96,8 @@ struct GyroCalibration {
   Eigen::Matrix3d MStd() const {
     Eigen::Matrix3d s = Eigen::Matrix3d::Zero();
     if (!m_covariance) return s;
-    for (int i = 0; i < 9; ++i) s(i / 3, i % 3) = std::sqrt(std::max((*m_covariance)(i, i), 0.0));
+    for (int i = 0; i < 9; ++i)
+      s(i / 3, i % 3) = std::sqrt(std::max((*m_covariance)(i, i), 0.0));
     return s;
   }
   /// Largest change of the per-position bias over the session (rad/s, per

@@ -36,7 +36,14 @@
 namespace mpcal {
 
 /// Unit of the time column.
-enum class TimeUnit { kAuto, kSeconds, kMilliseconds, kMicroseconds, kNanoseconds, kSampleIndex };
+enum class TimeUnit {
+  kAuto,
+  kSeconds,
+  kMilliseconds,
+  kMicroseconds,
+  kNanoseconds,
+  kSampleIndex
+};
 /// "auto", "s", "ms", "us", "ns" or "index".
 std::string_view ToString(TimeUnit unit);
 /// Inverse of ToString (also "µs"); std::nullopt for an unknown name.

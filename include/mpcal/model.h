@@ -14,7 +14,8 @@
 ///
 ///     T = [ 1                                    0                  0
 ///           tan θyz                              1/cos θyz          0
-///           tan θzx tan θyz − tan θzy / cos θzx  tan θzx / cos θyz  1/(cos θzx cos θzy) ]
+///           tan θzx tan θyz − tan θzy / cos θzx  tan θzx / cos θyz  1/(cos θzx cos θzy)
+///           ]
 ///
 /// Frame: x along the sensor's x axis, y in the plane of the sensor's x and y
 /// axes, z completing a right-handed orthogonal triad. These three constraints
@@ -55,12 +56,16 @@ inline constexpr int kNumModelParameters = 9;
 
 /// Packed order of the parameters: bias x, y, z (m/s²), scale-factor error
 /// x, y, z (dimensionless), θyz, θzx, θzy (rad). Names carry their unit.
-inline constexpr std::array<std::string_view, kNumModelParameters>
-    kParameterNames = {"bias_x_mps2",        "bias_y_mps2",
-                       "bias_z_mps2",        "scale_factor_error_x",
-                       "scale_factor_error_y", "scale_factor_error_z",
-                       "theta_yz_rad",       "theta_zx_rad",
-                       "theta_zy_rad"};
+inline constexpr std::array<std::string_view, kNumModelParameters> kParameterNames = {
+    "bias_x_mps2",
+    "bias_y_mps2",
+    "bias_z_mps2",
+    "scale_factor_error_x",
+    "scale_factor_error_y",
+    "scale_factor_error_z",
+    "theta_yz_rad",
+    "theta_zx_rad",
+    "theta_zy_rad"};
 
 /// The error model. All members zero is an ideal sensor.
 template <typename Scalar>
@@ -104,10 +109,9 @@ struct ErrorModelT {
     a.x() = d.x() / (Scalar(1) + scale_factor_error.x());
     a.y() = a.x() * tan(theta_yz_rad) +
             d.y() / ((Scalar(1) + scale_factor_error.y()) * cos(theta_yz_rad));
-    a.z() = -a.x() * tan(theta_zy_rad) / cos(theta_zx_rad) +
-            a.y() * tan(theta_zx_rad) +
-            d.z() / ((Scalar(1) + scale_factor_error.z()) *
-                     cos(theta_zx_rad) * cos(theta_zy_rad));
+    a.z() = -a.x() * tan(theta_zy_rad) / cos(theta_zx_rad) + a.y() * tan(theta_zx_rad) +
+            d.z() / ((Scalar(1) + scale_factor_error.z()) * cos(theta_zx_rad) *
+                     cos(theta_zy_rad));
     return a;
   }
 
@@ -119,10 +123,8 @@ struct ErrorModelT {
     Vector3 w;
     w.x() = specific_force_mps2.x() / t(0, 0);
     w.y() = (specific_force_mps2.y() - t(1, 0) * w.x()) / t(1, 1);
-    w.z() = (specific_force_mps2.z() - t(2, 0) * w.x() - t(2, 1) * w.y()) /
-            t(2, 2);
-    return bias_mps2 +
-           (Vector3::Ones() + scale_factor_error).cwiseProduct(w);
+    w.z() = (specific_force_mps2.z() - t(2, 0) * w.x() - t(2, 1) * w.y()) / t(2, 2);
+    return bias_mps2 + (Vector3::Ones() + scale_factor_error).cwiseProduct(w);
   }
 
   /// Packs into `p[0..8]` in the order of kParameterNames.

@@ -22,9 +22,10 @@ namespace mpcal {
 /// \throws mpcal::Error as CramerRaoBound.
 /// With a drifting bias in the truth (truth.bias_drift), the bound when the
 /// drift is estimated too.
-inline Eigen::Matrix<double, 9, 1> SimulatedBoundSigma(const SimulatedSession& session,
-                                                       double initial_rest_s,
-                                                       ModelKind model = ModelKind::kShinElSheimy9) {
+inline Eigen::Matrix<double, 9, 1> SimulatedBoundSigma(
+    const SimulatedSession& session,
+    double initial_rest_s,
+    ModelKind model = ModelKind::kShinElSheimy9) {
   const auto& drift = session.truth.bias_drift;
   const double reference_s = drift ? drift->reference_time_s : 0.0;
   const double quantisation_var = std::pow(session.quantisation_step_mps2, 2) / 12.0;
@@ -36,19 +37,23 @@ inline Eigen::Matrix<double, 9, 1> SimulatedBoundSigma(const SimulatedSession& s
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     for (std::size_t i = 0; i < rest_samples; ++i) mean += session.recording.accel[i];
     mean /= static_cast<double>(rest_samples);
-    positions.push_back({session.truth.Correct(mean).normalized(), noise, rest_samples,
+    positions.push_back({session.truth.Correct(mean).normalized(),
+                         noise,
+                         rest_samples,
                          0.5 * initial_rest_s - reference_s});
   }
   for (std::size_t k = 0; k < session.directions.size(); ++k) {
     const auto [first, last] = session.still_ranges[k];
-    positions.push_back({session.directions[k], noise, last - first,
-                         0.5 * static_cast<double>(first + last) / session.rate_hz -
-                             reference_s});
+    positions.push_back(
+        {session.directions[k],
+         noise,
+         last - first,
+         0.5 * static_cast<double>(first + last) / session.rate_hz - reference_s});
   }
-  return (drift ? CramerRaoBoundWithDrift(session.truth.model, positions,
-                                          session.truth.gravity_mps2, model)
-                : CramerRaoBound(session.truth.model, positions, session.truth.gravity_mps2,
-                                 model))
+  return (drift ? CramerRaoBoundWithDrift(
+                      session.truth.model, positions, session.truth.gravity_mps2, model)
+                : CramerRaoBound(
+                      session.truth.model, positions, session.truth.gravity_mps2, model))
       .diagonal()
       .cwiseSqrt();
 }

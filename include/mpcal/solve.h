@@ -80,7 +80,7 @@ std::string_view ToString(SolveStatus status);
 struct SolveResult {
   SolveStatus status = SolveStatus::kNoConvergence;
   std::string message;
-  ErrorModel initial;   ///< six-position initialisation
+  ErrorModel initial;  ///< six-position initialisation
   ErrorModel estimate;
   /// Covariance of the 9 packed parameters (order of kParameterNames), scaled
   /// by the a-posteriori variance of unit weight when that exceeds 1 (the

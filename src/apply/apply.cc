@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <ostream>
 #include <string_view>
@@ -50,7 +50,8 @@ struct BlockSums {
   RestBlock Close(double raw_mps2_per_unit) const {
     const double count = static_cast<double>(n);
     const Eigen::Vector3d mean = sum / count;
-    return {sum_norm / count, raw_mps2_per_unit * raw_sum_norm / count,
+    return {sum_norm / count,
+            raw_mps2_per_unit * raw_sum_norm / count,
             std::max(0.0, sum_sq / count - mean.squaredNorm())};
   }
 };
@@ -63,8 +64,9 @@ struct Rest {
 std::optional<Rest> RestMagnitude(std::vector<RestBlock> blocks) {
   if (blocks.empty()) return std::nullopt;
   // The quietest quarter: at rest, or as close to it as the log comes.
-  std::sort(blocks.begin(), blocks.end(),
-            [](const RestBlock& a, const RestBlock& b) { return a.motion < b.motion; });
+  std::sort(blocks.begin(), blocks.end(), [](const RestBlock& a, const RestBlock& b) {
+    return a.motion < b.motion;
+  });
   const std::size_t quiet = std::max<std::size_t>(1, blocks.size() / 4);
   std::vector<double> magnitudes;
   std::vector<double> raw;
@@ -82,12 +84,13 @@ std::optional<Rest> RestMagnitude(std::vector<RestBlock> blocks) {
 bool IsUnitLabelOf(std::string_view label, AccelUnits units) {
   std::string l;
   for (char c : label) {
-    if (c != ' ') l.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
+    if (c != ' ')
+      l.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
   }
   if (units == AccelUnits::kG) return l == "g";
   if (units == AccelUnits::kMps2) {
-    return l == "m/s^2" || l == "m/s2" || l == "m/s\xc2\xb2" || l == "ms^-2" || l == "ms-2" ||
-           l == "mps2";
+    return l == "m/s^2" || l == "m/s2" || l == "m/s\xc2\xb2" || l == "ms^-2" ||
+           l == "ms-2" || l == "mps2";
   }
   return false;
 }
@@ -96,7 +99,9 @@ bool IsUnitLabelOf(std::string_view label, AccelUnits units) {
 // name rewritten for the corrected readings: with g out of a log in m/s²,
 // "Acceleration x (m/s^2)" becomes "Acceleration x (g)". Other columns, and
 // names without a unit, stay as they are.
-std::string RelabelHeader(std::string_view header, const LogLayout& layout, AccelUnits from,
+std::string RelabelHeader(std::string_view header,
+                          const LogLayout& layout,
+                          AccelUnits from,
                           AccelUnits to) {
   if (from == to || layout.delimiter == ' ') return std::string(header);
   const std::string_view label = to == AccelUnits::kG ? "g" : "m/s^2";
@@ -107,8 +112,9 @@ std::string RelabelHeader(std::string_view header, const LogLayout& layout, Acce
     std::size_t stop = header.find(layout.delimiter, start);
     if (stop == std::string_view::npos) stop = header.size();
     std::string field(header.substr(start, stop - start));
-    const bool accel = std::find(layout.accel_columns.begin(), layout.accel_columns.end(),
-                                 column) != layout.accel_columns.end();
+    const bool accel =
+        std::find(layout.accel_columns.begin(), layout.accel_columns.end(), column) !=
+        layout.accel_columns.end();
     const std::size_t open = field.find_first_of("([");
     if (accel && open != std::string::npos) {
       const char close = field[open] == '(' ? ')' : ']';
@@ -134,21 +140,27 @@ void CheckCalibrationApplies(const Calibration& calibration, AccelUnits log_unit
   const bool log_counts = log_units == AccelUnits::kCounts;
   if (cal_counts && !log_counts) {
     throw Error(fmt::format(
-        "the calibration is for raw counts (input.units 'counts', {:.6g} m/s² per count) but "
+        "the calibration is for raw counts (input.units 'counts', {:.6g} m/s² per count) "
+        "but "
         "the log is read as '{}': apply it to logs of the same sensor in counts (--units "
         "counts), or calibrate from a log in '{}'",
-        calibration.mps2_per_unit, ToString(log_units), ToString(log_units)));
+        calibration.mps2_per_unit,
+        ToString(log_units),
+        ToString(log_units)));
   }
   if (log_counts && !cal_counts) {
-    throw Error(fmt::format(
-        "the log is read as raw counts (--units counts) but the calibration is for readings "
-        "in '{}', which have no scale for counts: give the log's real units with --units, or "
-        "calibrate from a log in counts",
-        ToString(calibration.input_units)));
+    throw Error(
+        fmt::format("the log is read as raw counts (--units counts) but the calibration "
+                    "is for readings "
+                    "in '{}', which have no scale for counts: give the log's real units "
+                    "with --units, or "
+                    "calibrate from a log in counts",
+                    ToString(calibration.input_units)));
   }
 }
 
-Corrector::Corrector(const Calibration& calibration, AccelUnits log_units,
+Corrector::Corrector(const Calibration& calibration,
+                     AccelUnits log_units,
                      AccelUnits out_units) {
   CheckCalibrationApplies(calibration, log_units);
   const double in_mps2_per_unit = log_units == AccelUnits::kCounts
@@ -164,23 +176,29 @@ Corrector::Corrector(const Calibration& calibration, AccelUnits log_units,
   matrix_ = scaled * (in_mps2_per_unit * out_per_mps2_);
   offset_ = scaled * m.bias_mps2 * out_per_mps2_;
   if (!matrix_.allFinite() || !offset_.allFinite()) {
-    throw Error("the calibration's model is not finite (scale-factor error of -1 or an angle "
-                "of 90°?)");
+    throw Error(
+        "the calibration's model is not finite (scale-factor error of -1 or an angle "
+        "of 90°?)");
   }
 }
 
-GyroCorrector::GyroCorrector(const GyroCalibration& gyro, GyroUnits log_units,
+GyroCorrector::GyroCorrector(const GyroCalibration& gyro,
+                             GyroUnits log_units,
                              GyroUnits out_units) {
   const bool cal_counts = gyro.input_units == GyroUnits::kCounts;
   if (cal_counts != (log_units == GyroUnits::kCounts)) {
-    throw Error(fmt::format(
-        "the gyroscope calibration is for readings in '{}' but the log's gyroscope is read as "
-        "'{}': raw counts and physical units do not convert without the sensor's scale; read "
-        "the log in the calibration's units",
-        ToString(gyro.input_units), ToString(log_units)));
+    throw Error(
+        fmt::format("the gyroscope calibration is for readings in '{}' but the log's "
+                    "gyroscope is read as "
+                    "'{}': raw counts and physical units do not convert without the "
+                    "sensor's scale; read "
+                    "the log in the calibration's units",
+                    ToString(gyro.input_units),
+                    ToString(log_units)));
   }
   // Readings in the log's unit → the calibration's unit → its nominal rad/s.
-  const double in_radps = cal_counts ? gyro.radps_per_unit : *FixedRadpsPerUnit(log_units);
+  const double in_radps =
+      cal_counts ? gyro.radps_per_unit : *FixedRadpsPerUnit(log_units);
   const double out_per_radps = 1.0 / *FixedRadpsPerUnit(out_units);
   matrix_ = gyro.m * (in_radps * out_per_radps);
   offset_ = gyro.m * gyro.bias_radps * out_per_radps;
@@ -202,13 +220,16 @@ std::string ApplyOptions::Validate() const {
     return "out_gyro_units must be rads or dps (corrected rates have no counts)";
   }
   if (!(rest_tolerance > 0.0) || !std::isfinite(rest_tolerance)) {
-    return fmt::format("rest_tolerance must be a positive fraction, got {}", rest_tolerance);
+    return fmt::format("rest_tolerance must be a positive fraction, got {}",
+                       rest_tolerance);
   }
   return "";
 }
 
-ApplyResult ApplyCalibration(const Calibration& calibration, const std::string& input,
-                             const std::string& output, const ApplyOptions& options) {
+ApplyResult ApplyCalibration(const Calibration& calibration,
+                             const std::string& input,
+                             const std::string& output,
+                             const ApplyOptions& options) {
   const std::string problem = options.Validate();
   if (!problem.empty()) throw Error("apply options: " + problem);
   RefuseOverwritingInput(input, output);
@@ -225,7 +246,8 @@ ApplyResult ApplyCalibration(const Calibration& calibration, const std::string& 
                                        ? calibration.mps2_per_unit
                                        : *FixedMps2PerUnit(log_units);
 
-  LogScanner scanner(input, options.log, /*parse_gyro=*/calibration.gyroscope.has_value());
+  LogScanner scanner(
+      input, options.log, /*parse_gyro=*/calibration.gyroscope.has_value());
   const char decimal_point = scanner.layout().decimal_point;
   // The gyroscope columns too, when both the calibration and the log have them.
   std::optional<GyroCorrector> correct_gyro;
@@ -249,7 +271,8 @@ ApplyResult ApplyCalibration(const Calibration& calibration, const std::string& 
       if (!line.is_data) {
         ++result.other_lines;
         if (line.line_number == scanner.layout().header_line) {
-          buffer.append(RelabelHeader(line.text, scanner.layout(), log_units, result.out_units));
+          buffer.append(
+              RelabelHeader(line.text, scanner.layout(), log_units, result.out_units));
         } else {
           buffer.append(line.text);
         }
@@ -269,11 +292,14 @@ ApplyResult ApplyCalibration(const Calibration& calibration, const std::string& 
         Eigen::Matrix<double, 6, 1> values;
         values << a, correct_gyro ? (*correct_gyro)(line.gyro, a * mps2_per_out)
                                   : Eigen::Vector3d::Zero();
-        auto span = [&](int i) { return i < 3 ? line.accel_span[i] : line.gyro_span[i - 3]; };
+        auto span = [&](int i) {
+          return i < 3 ? line.accel_span[i] : line.gyro_span[i - 3];
+        };
         std::array<int, 6> order = {0, 1, 2, 3, 4, 5};
         const int count = correct_gyro ? 6 : 3;
-        std::sort(order.begin(), order.begin() + count,
-                  [&](int i, int j) { return span(i).first < span(j).first; });
+        std::sort(order.begin(), order.begin() + count, [&](int i, int j) {
+          return span(i).first < span(j).first;
+        });
         std::size_t copied = 0;
         for (int k = 0; k < count; ++k) {
           const int axis = order[static_cast<std::size_t>(k)];
@@ -312,7 +338,8 @@ ApplyResult ApplyCalibration(const Calibration& calibration, const std::string& 
       // The raw readings tell a units mix-up (a factor 9.8) from a sensor
       // mix-up (errors of a few percent).
       const double raw_ratio = rest->raw_magnitude_mps2 / g;
-      std::string hint = "is it the calibrated sensor, and are the log's units right (--units)?";
+      std::string hint =
+          "is it the calibrated sensor, and are the log's units right (--units)?";
       if (log_units != AccelUnits::kCounts) {
         if (std::abs(raw_ratio * kStandardGravityMps2 - 1.0) < 0.2) {
           hint = "the log looks like it is in g: use --units g";
@@ -320,10 +347,15 @@ ApplyResult ApplyCalibration(const Calibration& calibration, const std::string& 
           hint = "the log looks like it is in m/s²: use --units mps2";
         }
       }
-      result.warnings.push_back(fmt::format(
-          "{}: the corrected magnitude at rest is {:.4g} m/s², {:.1f}% from the calibration's "
-          "gravity {:.6g} m/s²; {}",
-          scanner.source(), m, 100.0 * (m - g) / g, g, hint));
+      result.warnings.push_back(
+          fmt::format("{}: the corrected magnitude at rest is {:.4g} m/s², {:.1f}% from "
+                      "the calibration's "
+                      "gravity {:.6g} m/s²; {}",
+                      scanner.source(),
+                      m,
+                      100.0 * (m - g) / g,
+                      g,
+                      hint));
     }
   }
   return result;

@@ -499,11 +499,12 @@ CoverageResult AssessCoverage(const DetectResult& detection,
       static_cast<std::size_t>(detection.dropped_short) >= detection.intervals.size()) {
     // First in the advice (push and rotate: GCC 12 warns of a null
     // dereference in its own code for an insert at the front).
-    res.advice.push_back(
-        fmt::format("{} still stretch{} shorter than the minimum (--min-static) {} dropped: "
-                    "hold each position longer",
-                    detection.dropped_short, detection.dropped_short == 1 ? "" : "es",
-                    detection.dropped_short == 1 ? "was" : "were"));
+    res.advice.push_back(fmt::format(
+        "{} still stretch{} shorter than the minimum (--min-static) {} dropped: "
+        "hold each position longer",
+        detection.dropped_short,
+        detection.dropped_short == 1 ? "" : "es",
+        detection.dropped_short == 1 ? "was" : "were"));
     std::rotate(res.advice.rbegin(), res.advice.rbegin() + 1, res.advice.rend());
     res.summary = NotEnoughSummary(res);
   }

@@ -1,8 +1,8 @@
 #include "mpcal/detect.h"
 
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <utility>
@@ -55,10 +55,8 @@ double QuantileOf(std::vector<double> sample,
   };
   if (stride <= 1) return Quantile(std::move(sample), q);
   if (sample.empty() || count == 0) return keep_all();
-  const auto rank =
-      static_cast<std::size_t>(std::clamp(q * static_cast<double>(count - 1),
-                                          0.0,
-                                          static_cast<double>(count - 1)));
+  const auto rank = static_cast<std::size_t>(std::clamp(
+      q * static_cast<double>(count - 1), 0.0, static_cast<double>(count - 1)));
   // The sample's rank of q, +- 5 standard deviations of a sampled rank.
   const double m = static_cast<double>(sample.size());
   const double centre = q * (m - 1.0);
@@ -98,7 +96,9 @@ double QuantileOf(std::vector<double> sample,
 // from scratch every `resync` steps so that rounding cannot build up over
 // millions of samples.
 template <typename Visit>
-void ForEachWindow(const std::vector<Eigen::Vector3d>& a, std::size_t half, Visit&& visit) {
+void ForEachWindow(const std::vector<Eigen::Vector3d>& a,
+                   std::size_t half,
+                   Visit&& visit) {
   const std::size_t n = a.size();
   const std::size_t w = 2 * half + 1;
   const Eigen::Vector3d ref = a[0];
@@ -208,7 +208,8 @@ SampleScan CheckAndScan(const Recording& recording, const std::string& src) {
       bad |= !(std::abs(t[i]) <= kMax) | !(std::abs(a[i][0]) <= kMax) |
              !(std::abs(a[i][1]) <= kMax) | !(std::abs(a[i][2]) <= kMax);
     }
-    for (std::size_t i = std::max<std::size_t>(b, 1); i < e; ++i) bad |= !(t[i] > t[i - 1]);
+    for (std::size_t i = std::max<std::size_t>(b, 1); i < e; ++i)
+      bad |= !(t[i] > t[i - 1]);
     if (bad) fail_in(b, e);
     for (std::size_t i = b; i < e; ++i) {
       highest = highest.max(a[i].array());
@@ -327,14 +328,15 @@ std::size_t MarkClipped(const std::vector<Eigen::Vector3d>& a,
       }
     }
     if (count > 0 && range_mps2 > 0.0) {
-      limits.push_back(c == 0.0 ? fmt::format("|{}| >= {:.6g}", kAxes[k], hi_limit)
-                                : fmt::format("|{} - {:.6g}| >= {:.6g}", kAxes[k], c,
-                                              hi_limit - c));
+      limits.push_back(
+          c == 0.0 ? fmt::format("|{}| >= {:.6g}", kAxes[k], hi_limit)
+                   : fmt::format("|{} - {:.6g}| >= {:.6g}", kAxes[k], c, hi_limit - c));
     } else if (count > 0) {
       std::string side;
       if (std::isfinite(hi_limit)) side = fmt::format("{} >= {:.6g}", kAxes[k], hi_limit);
       if (std::isfinite(lo_limit)) {
-        side += fmt::format("{}{} <= {:.6g}", side.empty() ? "" : " or ", kAxes[k], lo_limit);
+        side +=
+            fmt::format("{}{} <= {:.6g}", side.empty() ? "" : " or ", kAxes[k], lo_limit);
       }
       limits.push_back(side);
     }
@@ -448,10 +450,12 @@ DetectResult DetectStatic(const Recording& recording, const DetectOptions& optio
       MarkClipped(a, options.range_mps2, sphere, scan, &clipped, &clip_limits);
   if (result.clipped_samples > 0) {
     clipped_before.assign(n + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) clipped_before[i + 1] = clipped_before[i] + clipped[i];
+    for (std::size_t i = 0; i < n; ++i)
+      clipped_before[i + 1] = clipped_before[i] + clipped[i];
     std::vector<double> unclipped;
     for (std::size_t c = first; c <= last; ++c) {
-      if (clipped_before[c + half + 1] == clipped_before[c - half]) unclipped.push_back(stat[c]);
+      if (clipped_before[c + half + 1] == clipped_before[c - half])
+        unclipped.push_back(stat[c]);
     }
     if (!unclipped.empty()) {
       result.quiet_level =
@@ -564,7 +568,9 @@ DetectResult DetectStatic(const Recording& recording, const DetectOptions& optio
           "position {:.1f}-{:.1f} s dropped: {} of its samples are at the sensor's range "
           "limit ({}), which would bias its mean; if that is not the limit, give the "
           "sensor's range with --range",
-          iv.start_s, iv.end_s, clipped_before[iv.end] - clipped_before[iv.begin],
+          iv.start_s,
+          iv.end_s,
+          clipped_before[iv.end] - clipped_before[iv.begin],
           clip_limits));
       continue;
     }
@@ -598,7 +604,9 @@ DetectResult DetectStatic(const Recording& recording, const DetectOptions& optio
         "even the quietest {:.0f}% of the recording moves at {:.3g} g, more than a MEMS "
         "accelerometer held still shows (under {} g): if the sensor was not still, the "
         "positions found are not static and a calibration from them is biased",
-        100.0 * options.quiet_quantile, quiet_g, kPlausibleQuietG));
+        100.0 * options.quiet_quantile,
+        quiet_g,
+        kPlausibleQuietG));
   }
 
   if (result.intervals.empty()) {
@@ -606,10 +614,14 @@ DetectResult DetectStatic(const Recording& recording, const DetectOptions& optio
     if (result.dropped_clipped > 0) {
       result.message = fmt::format(
           "no usable static position in {:.1f} s: {} found, {} too short, and {} dropped "
-          "because they contain readings at the sensor's range limit ({}); keep the sensor "
+          "because they contain readings at the sensor's range limit ({}); keep the "
+          "sensor "
           "within its range, or give the range with --range if that is not the limit",
-          span_s, result.dropped_clipped + result.dropped_short, result.dropped_short,
-          result.dropped_clipped, clip_limits);
+          span_s,
+          result.dropped_clipped + result.dropped_short,
+          result.dropped_short,
+          result.dropped_clipped,
+          clip_limits);
     } else if (runs.empty()) {
       result.message = fmt::format(
           "no static position found in {:.1f} s: no window of {} s was still "

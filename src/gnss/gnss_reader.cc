@@ -20,8 +20,8 @@
 #include <GeographicLib/LocalCartesian.hpp>
 
 #include "mpcal/error.h"
-#include "mpcal/text_input.h"
 #include "mpcal/gnss.h"
+#include "mpcal/text_input.h"
 
 namespace mpcal {
 namespace {
@@ -826,8 +826,8 @@ GnssTrack ReadGnss(const std::string& path, const GnssReadOptions& options) {
   }
   // Checked before it is read to the end (not a device, not binary, not
   // larger than a day of 10 Hz positions).
-  return ParseGnss(ReadTextInput(path, kMaxReferenceFileBytes, "GNSS reference file"), path,
-                   options);
+  return ParseGnss(
+      ReadTextInput(path, kMaxReferenceFileBytes, "GNSS reference file"), path, options);
 }
 
 Eigen::Vector3d GeodeticToEnu(const Geodetic& origin, const Geodetic& point) {

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include <GeographicLib/NormalGravity.hpp>
 #include <fmt/format.h>
+#include <GeographicLib/NormalGravity.hpp>
 
 #include "mpcal/error.h"
 
@@ -24,8 +24,8 @@ double NormalGravityMps2(double latitude_deg, double height_m) {
   }
   double gamma_north_mps2 = 0.0;
   double gamma_up_mps2 = 0.0;
-  GeographicLib::NormalGravity::WGS84().Gravity(latitude_deg, height_m,
-                                                gamma_north_mps2, gamma_up_mps2);
+  GeographicLib::NormalGravity::WGS84().Gravity(
+      latitude_deg, height_m, gamma_north_mps2, gamma_up_mps2);
   return std::hypot(gamma_north_mps2, gamma_up_mps2);
 }
 

@@ -19,10 +19,11 @@ constexpr double kWeakVectorShare = 0.3;
 
 }  // namespace
 
-std::vector<GyroFinding> AnalyseGyroObservability(const Eigen::MatrixXd& jacobian,
-                                                  double covariance_scale,
-                                                  double poorly_determined_std,
-                                                  Eigen::Matrix<double, 9, 1>* singular_values) {
+std::vector<GyroFinding> AnalyseGyroObservability(
+    const Eigen::MatrixXd& jacobian,
+    double covariance_scale,
+    double poorly_determined_std,
+    Eigen::Matrix<double, 9, 1>* singular_values) {
   std::vector<GyroFinding> findings;
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jacobian, Eigen::ComputeFullV);
   const Eigen::VectorXd sv = svd.singularValues();

@@ -15,9 +15,10 @@ namespace mpcal::internal {
 /// the 9 entries of M (row-major), `dof_scale` the factor on the covariance
 /// (variance factor), `poorly_determined_std` as in GyroOptions. Fills
 /// `singular_values` (of the Jacobian, largest first).
-std::vector<GyroFinding> AnalyseGyroObservability(const Eigen::MatrixXd& jacobian,
-                                                  double covariance_scale,
-                                                  double poorly_determined_std,
-                                                  Eigen::Matrix<double, 9, 1>* singular_values);
+std::vector<GyroFinding> AnalyseGyroObservability(
+    const Eigen::MatrixXd& jacobian,
+    double covariance_scale,
+    double poorly_determined_std,
+    Eigen::Matrix<double, 9, 1>* singular_values);
 
 }  // namespace mpcal::internal

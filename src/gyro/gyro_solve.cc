@@ -7,8 +7,8 @@
 #include <numbers>
 
 #include <ceres/ceres.h>
-#include <Eigen/Cholesky>
 #include <fmt/format.h>
+#include <Eigen/Cholesky>
 
 #include <Eigen/Geometry>
 
@@ -38,7 +38,8 @@ constexpr double kPriorDof = 10.0;
 class TurnCost : public ceres::SizedCostFunction<2, 9> {
  public:
   TurnCost(const TurnData& turn, double sigma) : turn_(turn), sigma_(sigma) {}
-  bool Evaluate(double const* const* parameters, double* residuals,
+  bool Evaluate(double const* const* parameters,
+                double* residuals,
                 double** jacobians) const override {
     const Eigen::Matrix3d m = Eigen::Map<const RowMajor3>(parameters[0]);
     Eigen::Vector2d r;
@@ -63,7 +64,8 @@ class TurnCost : public ceres::SizedCostFunction<2, 9> {
 class ScaleCost : public ceres::SizedCostFunction<2, 1> {
  public:
   ScaleCost(const TurnData& turn, double sigma) : turn_(turn), sigma_(sigma) {}
-  bool Evaluate(double const* const* parameters, double* residuals,
+  bool Evaluate(double const* const* parameters,
+                double* residuals,
                 double** jacobians) const override {
     const Eigen::Matrix3d m = parameters[0][0] * Eigen::Matrix3d::Identity();
     Eigen::Vector2d r;
@@ -129,7 +131,8 @@ double FitScale(const TurnProblem& problem, double guess, int max_iterations) {
 
 // Whitened Jacobian (2·turns × 9) at the effective matrix, per entry of M
 // (the effective matrix over the nominal scale).
-Eigen::MatrixXd WhitenedJacobian(const TurnProblem& problem, const Eigen::Matrix3d& m_eff,
+Eigen::MatrixXd WhitenedJacobian(const TurnProblem& problem,
+                                 const Eigen::Matrix3d& m_eff,
                                  double scale) {
   Eigen::MatrixXd j(2 * problem.turns.size(), 9);
   for (std::size_t k = 0; k < problem.turns.size(); ++k) {
@@ -158,8 +161,10 @@ bool Plausible(const Eigen::Matrix3d& m) {
   return true;
 }
 
-double ResolveScale(const Recording& recording, const GyroOptions& options,
-                    const TurnProblem& problem, bool* found) {
+double ResolveScale(const Recording& recording,
+                    const GyroOptions& options,
+                    const TurnProblem& problem,
+                    bool* found) {
   *found = false;
   if (options.radps_per_unit > 0.0) return options.radps_per_unit;
   if (const auto fixed = FixedRadpsPerUnit(recording.gyro_units)) return *fixed;
@@ -226,7 +231,8 @@ std::string_view ToString(GyroStatus status) {
 
 GyroResult CalibrateGyroscope(const Recording& recording,
                               std::span<const StaticInterval> intervals,
-                              const Calibration& accel, const GyroOptions& options) {
+                              const Calibration& accel,
+                              const GyroOptions& options) {
   if (const std::string problem = options.Validate(); !problem.empty()) {
     throw Error("gyroscope options: " + problem);
   }
@@ -237,15 +243,24 @@ GyroResult CalibrateGyroscope(const Recording& recording,
     if (const auto fixed = FixedRadpsPerUnit(recording.gyro_units)) carry_scale = *fixed;
   }
   if (!(carry_scale > 0.0)) {
-    const TurnProblem first = internal::BuildTurnProblem(
-        recording, intervals, accel, options.direction_window_s, options.g_sensitivity,
-        options.g_sensitivity_min_f, 0.0);
+    const TurnProblem first = internal::BuildTurnProblem(recording,
+                                                         intervals,
+                                                         accel,
+                                                         options.direction_window_s,
+                                                         options.g_sensitivity,
+                                                         options.g_sensitivity_min_f,
+                                                         0.0);
     bool unused = false;
-    if (first.turns.size() >= 5) carry_scale = ResolveScale(recording, options, first, &unused);
+    if (first.turns.size() >= 5)
+      carry_scale = ResolveScale(recording, options, first, &unused);
   }
-  const TurnProblem problem =
-      internal::BuildTurnProblem(recording, intervals, accel, options.direction_window_s,
-                                 options.g_sensitivity, options.g_sensitivity_min_f, carry_scale);
+  const TurnProblem problem = internal::BuildTurnProblem(recording,
+                                                         intervals,
+                                                         accel,
+                                                         options.direction_window_s,
+                                                         options.g_sensitivity,
+                                                         options.g_sensitivity_min_f,
+                                                         carry_scale);
   GyroResult result;
   GyroCalibration& c = result.calibration;
   c.input_units = recording.gyro_units;
@@ -290,8 +305,10 @@ GyroResult CalibrateGyroscope(const Recording& recording,
   // wanders off.
   Eigen::Matrix<double, 9, 1> singular;
   result.findings = internal::AnalyseGyroObservability(
-      WhitenedJacobian(problem, Eigen::Map<RowMajor3>(m_eff), scale), 1.0,
-      options.poorly_determined_std, &singular);
+      WhitenedJacobian(problem, Eigen::Map<RowMajor3>(m_eff), scale),
+      1.0,
+      options.poorly_determined_std,
+      &singular);
   for (const GyroFinding& f : result.findings) {
     if (f.kind == GyroFindingKind::kUndetermined) {
       result.status = GyroStatus::kUndetermined;
@@ -338,7 +355,8 @@ GyroResult CalibrateGyroscope(const Recording& recording,
   ceres::Covariance covariance(cov_options);
   const std::vector<const double*> blocks = {m_eff};
   Eigen::Matrix<double, 9, 9, Eigen::RowMajor> cov = Eigen::Matrix<double, 9, 9>::Zero();
-  if (covariance.Compute(blocks, &p)) covariance.GetCovarianceBlock(m_eff, m_eff, cov.data());
+  if (covariance.Compute(blocks, &p))
+    covariance.GetCovarianceBlock(m_eff, m_eff, cov.data());
   c.m_covariance = result.covariance_scale * cov / (scale * scale);
 
   for (const auto& b : problem.bias_raw) {
@@ -350,7 +368,8 @@ GyroResult CalibrateGyroscope(const Recording& recording,
   Eigen::Vector3d spread = Eigen::Vector3d::Zero();
   for (const auto& b : c.position_bias) spread += (b.bias_radps - mean).cwiseAbs2();
   const double n = static_cast<double>(c.position_bias.size());
-  c.bias_radps = problem.g_sensitivity_used ? (problem.bias_without_g_raw * scale).eval() : mean;
+  c.bias_radps =
+      problem.g_sensitivity_used ? (problem.bias_without_g_raw * scale).eval() : mean;
   if (problem.g_sensitivity_used) {
     c.g_sensitivity_radps_per_mps2 = problem.g_sensitivity_raw_per_mps2 * scale;
   }
@@ -369,9 +388,10 @@ GyroResult CalibrateGyroscope(const Recording& recording,
   fit.converged = converged;
   c.fit = fit;
   result.status = converged ? GyroStatus::kConverged : GyroStatus::kNoConvergence;
-  result.message = Plausible(c.m) ? summary.message
-                                  : "the estimate left the plausible range (|scale - 1| < 0.5, "
-                                    "|misalignment| < 0.5): the solver diverged";
+  result.message = Plausible(c.m)
+                       ? summary.message
+                       : "the estimate left the plausible range (|scale - 1| < 0.5, "
+                         "|misalignment| < 0.5): the solver diverged";
   (void)scale_found;
   return result;
 }
@@ -380,11 +400,14 @@ Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const Recording& recording,
                                                std::span<const StaticInterval> intervals,
                                                const Calibration& accel,
                                                const GyroCalibration& truth) {
-  const TurnProblem problem =
-      internal::BuildTurnProblem(recording, intervals, accel, GyroOptions().direction_window_s,
-                                 truth.g_sensitivity_radps_per_mps2 ? GSensitivity::kOn
-                                                                    : GSensitivity::kOff,
-                                 GyroOptions().g_sensitivity_min_f, truth.radps_per_unit);
+  const TurnProblem problem = internal::BuildTurnProblem(
+      recording,
+      intervals,
+      accel,
+      GyroOptions().direction_window_s,
+      truth.g_sensitivity_radps_per_mps2 ? GSensitivity::kOn : GSensitivity::kOff,
+      GyroOptions().g_sensitivity_min_f,
+      truth.radps_per_unit);
   const double scale = truth.radps_per_unit;
   const Eigen::MatrixXd j = WhitenedJacobian(problem, truth.m * scale, scale);
   const Eigen::MatrixXd information = j.transpose() * j;
@@ -397,14 +420,19 @@ Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const Recording& recording,
   return ldlt.solve(Eigen::MatrixXd::Identity(9, 9));
 }
 
-Eigen::Matrix3d IntegrateRotation(const Recording& recording, std::size_t begin,
-                                  std::size_t end, const GyroCalibration& gyro) {
+Eigen::Matrix3d IntegrateRotation(const Recording& recording,
+                                  std::size_t begin,
+                                  std::size_t end,
+                                  const GyroCalibration& gyro) {
   if (recording.gyro_radps.size() != recording.size() || recording.empty()) {
     throw Error(fmt::format("{}: the log has no gyroscope readings", recording.source));
   }
   if (begin > end || end >= recording.size()) {
     throw Error(fmt::format("{}: samples {}-{} are outside the recording ({} samples)",
-                            recording.source, begin, end, recording.size()));
+                            recording.source,
+                            begin,
+                            end,
+                            recording.size()));
   }
   std::vector<internal::TurnStep> steps;
   steps.reserve(end - begin);

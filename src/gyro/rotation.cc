@@ -51,7 +51,8 @@ Eigen::Matrix3d RightJacobianSO3(const Eigen::Vector3d& phi) {
   return Eigen::Matrix3d::Identity() - b * k + c * k * k;
 }
 
-Eigen::Matrix3d RotationOverTurn(const Eigen::Matrix3d& m, std::span<const TurnStep> steps,
+Eigen::Matrix3d RotationOverTurn(const Eigen::Matrix3d& m,
+                                 std::span<const TurnStep> steps,
                                  Eigen::Matrix<double, 3, 9>* jacobian) {
   Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
   // Σ_i R_{i+1} J_r(φ_i) δφ_i, accumulated as a 3 × 9 map of δM.

@@ -4,8 +4,8 @@
 // gyroscope matrix M, for a rate linear over the interval (Bortz 1971):
 //   φ_i = M (b_i + c_i)/2 + (M b_i × M c_i)/12,
 // the trapezoid plus the two-sample coning term (without it, the hand's
-// fast wobble during a turn leaves 0.1° at 100 Hz). Two forms of the same product: one templated on
-// the scalar (ceres::Jet goes through it, the reference for the
+// fast wobble during a turn leaves 0.1° at 100 Hz). Two forms of the same product: one
+// templated on the scalar (ceres::Jet goes through it, the reference for the
 // derivatives), and one in doubles with the analytic Jacobian with respect
 // to M, the one the solver uses (a 9-wide Jet through 20 000 exponentials
 // per evaluation is ten times slower).
@@ -62,7 +62,8 @@ Eigen::Matrix<T, 3, 3> RotationOverTurn(const T* m, std::span<const TurnStep> st
 /// row-major entries of M):
 ///   δθ = Rᵀ Σ_i R_{i+1} J_r(φ_i) δφ_i,  R_{i+1} = Π_{j≤i} exp(φ_j),
 ///   δφ_i = δM a_i − [M c_i]× δM b_i / 12 + [M b_i]× δM c_i / 12.
-Eigen::Matrix3d RotationOverTurn(const Eigen::Matrix3d& m, std::span<const TurnStep> steps,
+Eigen::Matrix3d RotationOverTurn(const Eigen::Matrix3d& m,
+                                 std::span<const TurnStep> steps,
                                  Eigen::Matrix<double, 3, 9>* jacobian);
 
 /// exp([φ]×) (Rodrigues), and the right Jacobian of SO(3) at φ.

@@ -55,11 +55,16 @@ PositionGyro GyroAt(const Recording& rec, const StaticInterval& in) {
 // holds a position; with `radps_per_unit` > 0 each sample's specific force is
 // carried to that sample by the gyroscope (nominal scale, the position's
 // bias), so the mean is the direction where the turn's integration starts.
-Eigen::Vector3d EdgeDirection(const Recording& rec, const StaticInterval& in,
-                              const Calibration& accel, double window_s, bool at_end,
-                              const Eigen::Vector3d& gyro_bias, double radps_per_unit,
+Eigen::Vector3d EdgeDirection(const Recording& rec,
+                              const StaticInterval& in,
+                              const Calibration& accel,
+                              double window_s,
+                              bool at_end,
+                              const Eigen::Vector3d& gyro_bias,
+                              double radps_per_unit,
                               double* variance) {
-  const double edge_s = at_end ? rec.time_s[in.end - 1] - window_s : rec.time_s[in.begin] + window_s;
+  const double edge_s =
+      at_end ? rec.time_s[in.end - 1] - window_s : rec.time_s[in.begin] + window_s;
   std::size_t first = in.begin;
   std::size_t last = in.end;  // one past
   if (at_end) {
@@ -88,7 +93,8 @@ Eigen::Vector3d EdgeDirection(const Recording& rec, const StaticInterval& in,
   }
   const double n = static_cast<double>(last - first);
   const Eigen::Vector3d std_mps2 = in.std * accel.mps2_per_unit;
-  *variance += std_mps2.squaredNorm() / 3.0 / n / (accel.gravity_mps2 * accel.gravity_mps2);
+  *variance +=
+      std_mps2.squaredNorm() / 3.0 / n / (accel.gravity_mps2 * accel.gravity_mps2);
   return sum.normalized();
 }
 
@@ -99,24 +105,30 @@ double TurnData::Sigma(double radps_per_unit) const {
                    radps_per_unit * radps_per_unit * gyro_variance_raw2s2);
 }
 
-TurnProblem BuildTurnProblem(const Recording& rec, std::span<const StaticInterval> intervals,
-                             const Calibration& accel, double direction_window_s,
-                             GSensitivity g_sensitivity, double min_f,
+TurnProblem BuildTurnProblem(const Recording& rec,
+                             std::span<const StaticInterval> intervals,
+                             const Calibration& accel,
+                             double direction_window_s,
+                             GSensitivity g_sensitivity,
+                             double min_f,
                              double carry_radps_per_unit) {
   if (rec.gyro_radps.size() != rec.size() || rec.empty()) {
     throw Error(fmt::format("{}: the log has no gyroscope readings", rec.source));
   }
   if (intervals.size() < 2) {
     throw Error(fmt::format("{}: {} static position(s) give no turn for the gyroscope",
-                            rec.source, intervals.size()));
+                            rec.source,
+                            intervals.size()));
   }
   for (std::size_t k = 0; k < intervals.size(); ++k) {
     const StaticInterval& in = intervals[k];
     if (in.begin >= in.end || in.end > rec.size() ||
         (k > 0 && in.begin < intervals[k - 1].end)) {
-      throw Error(fmt::format("{}: static position {} lies outside the recording or "
-                              "overlaps the one before",
-                              rec.source, k + 1));
+      throw Error(
+          fmt::format("{}: static position {} lies outside the recording or "
+                      "overlaps the one before",
+                      rec.source,
+                      k + 1));
     }
   }
 
@@ -141,7 +153,8 @@ TurnProblem BuildTurnProblem(const Recording& rec, std::span<const StaticInterva
   // is quantisation of a sensor that does not move, not a better gyroscope.
   problem.noise_std_raw = Median(stds);
   std::vector<double> periods;
-  for (std::size_t i = 1; i < rec.size(); i += std::max<std::size_t>(1, rec.size() / 1000)) {
+  for (std::size_t i = 1; i < rec.size();
+       i += std::max<std::size_t>(1, rec.size() / 1000)) {
     periods.push_back(rec.time_s[i] - rec.time_s[i - 1]);
   }
   problem.sample_period_s = Median(periods);
@@ -161,7 +174,8 @@ TurnProblem BuildTurnProblem(const Recording& rec, std::span<const StaticInterva
     const double t0 = gyro.front().centre_s;
     for (Eigen::Index j = 0; j < n; ++j) {
       const auto k = static_cast<std::size_t>(j);
-      x.row(j) << 1.0, accel.Correct(intervals[k].mean).transpose(), gyro[k].centre_s - t0;
+      x.row(j) << 1.0, accel.Correct(intervals[k].mean).transpose(),
+          gyro[k].centre_s - t0;
       y.row(j) = gyro[k].mean.transpose();
     }
     const Eigen::MatrixXd coef = x.colPivHouseholderQr().solve(y);  // 5 × 3
@@ -194,10 +208,22 @@ TurnProblem BuildTurnProblem(const Recording& rec, std::span<const StaticInterva
     t.start_s = rec.time_s[t.begin];
     t.end_s = rec.time_s[t.end];
     if (direction_window_s > 0.0) {
-      t.u_from = EdgeDirection(rec, intervals[k], accel, direction_window_s, true, gyro[k].mean,
-                               carry_radps_per_unit, &t.direction_variance_rad2);
-      t.u_to = EdgeDirection(rec, intervals[k + 1], accel, direction_window_s, false,
-                             gyro[k + 1].mean, carry_radps_per_unit, &t.direction_variance_rad2);
+      t.u_from = EdgeDirection(rec,
+                               intervals[k],
+                               accel,
+                               direction_window_s,
+                               true,
+                               gyro[k].mean,
+                               carry_radps_per_unit,
+                               &t.direction_variance_rad2);
+      t.u_to = EdgeDirection(rec,
+                             intervals[k + 1],
+                             accel,
+                             direction_window_s,
+                             false,
+                             gyro[k + 1].mean,
+                             carry_radps_per_unit,
+                             &t.direction_variance_rad2);
     } else {
       t.u_from = directions[k];
       t.u_to = directions[k + 1];
@@ -246,8 +272,10 @@ TurnProblem BuildTurnProblem(const Recording& rec, std::span<const StaticInterva
   return problem;
 }
 
-Eigen::Matrix3d TurnResidual(const TurnData& turn, const Eigen::Matrix3d& m,
-                             Eigen::Vector2d* residual, Eigen::Matrix<double, 2, 9>* jacobian) {
+Eigen::Matrix3d TurnResidual(const TurnData& turn,
+                             const Eigen::Matrix3d& m,
+                             Eigen::Vector2d* residual,
+                             Eigen::Matrix<double, 2, 9>* jacobian) {
   Eigen::Matrix<double, 3, 9> d_theta;
   const Eigen::Matrix3d r =
       RotationOverTurn(m, turn.steps, jacobian != nullptr ? &d_theta : nullptr);

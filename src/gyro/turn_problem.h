@@ -68,15 +68,19 @@ struct TurnProblem {
 /// the window's edge, so that the hand's sway within it does not count.
 TurnProblem BuildTurnProblem(const Recording& recording,
                              std::span<const StaticInterval> intervals,
-                             const Calibration& accel, double direction_window_s,
-                             GSensitivity g_sensitivity, double min_f,
+                             const Calibration& accel,
+                             double direction_window_s,
+                             GSensitivity g_sensitivity,
+                             double min_f,
                              double carry_radps_per_unit);
 
 /// Residual of one turn (unwhitened, rad: the tilt components in the basis
 /// at u_to) at the effective matrix `m` applied to raw increments, and its
 /// 2 × 9 Jacobian when asked. Returns the rotation over the turn.
-Eigen::Matrix3d TurnResidual(const TurnData& turn, const Eigen::Matrix3d& m,
-                             Eigen::Vector2d* residual, Eigen::Matrix<double, 2, 9>* jacobian);
+Eigen::Matrix3d TurnResidual(const TurnData& turn,
+                             const Eigen::Matrix3d& m,
+                             Eigen::Vector2d* residual,
+                             Eigen::Matrix<double, 2, 9>* jacobian);
 
 /// Angle (rad) between the carried direction Rᵀ u_from and u_to.
 double TurnTilt(const TurnData& turn, const Eigen::Matrix3d& rotation);

@@ -165,7 +165,8 @@ OutputTarget ResolveOutput(const std::string& path) {
       continue;
     }
     if (S_ISDIR(st.st_mode)) {
-      throw Error(fmt::format("cannot write '{}': it is a directory; give a file name", path));
+      throw Error(
+          fmt::format("cannot write '{}': it is a directory; give a file name", path));
     }
     if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) {
       return {OutputTarget::Kind::kDirect, current, -1};
@@ -173,31 +174,37 @@ OutputTarget ResolveOutput(const std::string& path) {
     if (S_ISREG(st.st_mode)) {
       // Files under /proc cannot be renamed over; they are written in place.
       const bool in_proc = current.rfind("/proc/", 0) == 0;
-      return {in_proc ? OutputTarget::Kind::kDirect : OutputTarget::Kind::kReplace, current,
+      return {in_proc ? OutputTarget::Kind::kDirect : OutputTarget::Kind::kReplace,
+              current,
               -1};
     }
     throw Error(fmt::format(
-        "cannot write '{}': it is a {}, which cannot be written whole or not at all; give a "
+        "cannot write '{}': it is a {}, which cannot be written whole or not at all; "
+        "give a "
         "regular file",
-        path, S_ISBLK(st.st_mode) ? "block device" : "socket or other special file"));
+        path,
+        S_ISBLK(st.st_mode) ? "block device" : "socket or other special file"));
   }
   throw Error(fmt::format("cannot write '{}': too many levels of symbolic links", path));
 }
 
 // Streams `write` into descriptor `fd`; `name` for the messages.
-void WriteToDescriptor(int fd, const std::string& name,
+void WriteToDescriptor(int fd,
+                       const std::string& name,
                        const std::function<void(std::ostream&)>& write) {
   FdStreambuf buf(fd);
   std::ostream out(&buf);
   write(out);
   out.flush();
   if (!out || buf.error() != 0) {
-    throw Error(fmt::format("error writing to {}: {}", name,
+    throw Error(fmt::format("error writing to {}: {}",
+                            name,
                             std::strerror(buf.error() != 0 ? buf.error() : EIO)));
   }
 }
 
-void WriteInPlace(const std::string& path, const std::string& device,
+void WriteInPlace(const std::string& path,
+                  const std::string& device,
                   const std::function<void(std::ostream&)>& write) {
   const int fd = ::open(device.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
   if (fd < 0) {
@@ -222,7 +229,8 @@ mode_t ModeFor(const std::string& target) {
   return 0666 & ~CurrentUmask();
 }
 
-void ReplaceAtomically(const std::string& path, const std::string& resolved,
+void ReplaceAtomically(const std::string& path,
+                       const std::string& resolved,
                        const std::function<void(std::ostream&)>& write) {
   const fs::path target(resolved);
   const fs::path dir = OutputDirectory(target);
@@ -234,8 +242,10 @@ void ReplaceAtomically(const std::string& path, const std::string& resolved,
   const mode_t mode = ModeFor(resolved);
   const int fd = ::mkstemp(tmp.data());
   if (fd < 0) {
-    throw Error(fmt::format("cannot write '{}': {} (is directory '{}' writable?)", path,
-                            std::strerror(errno), dir.string()));
+    throw Error(fmt::format("cannot write '{}': {} (is directory '{}' writable?)",
+                            path,
+                            std::strerror(errno),
+                            dir.string()));
   }
   auto fail = [&](const std::string& message) {
     ::close(fd);
@@ -254,7 +264,8 @@ void ReplaceAtomically(const std::string& path, const std::string& resolved,
     }
     out.flush();
     if (!out || buf.error() != 0) {
-      fail(fmt::format("error writing '{}': {}", path,
+      fail(fmt::format("error writing '{}': {}",
+                       path,
                        std::strerror(buf.error() != 0 ? buf.error() : EIO)));
     }
   }
@@ -303,8 +314,8 @@ void CheckWritable(const std::string& path) {
   const OutputTarget target = ResolveOutput(path);
   if (target.kind == OutputTarget::Kind::kDescriptor) {
     if (::fcntl(target.fd, F_GETFL) < 0) {
-      throw Error(fmt::format("cannot write '{}': {} is closed", path,
-                              DescribeDescriptor(target.fd)));
+      throw Error(fmt::format(
+          "cannot write '{}': {} is closed", path, DescribeDescriptor(target.fd)));
     }
     return;
   }
@@ -317,21 +328,27 @@ void CheckWritable(const std::string& path) {
   const fs::path dir = OutputDirectory(fs::path(target.path));
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) {
-    throw Error(fmt::format(
-        "cannot write '{}': directory '{}' does not exist; create it, or give another path",
-        path, dir.string()));
+    throw Error(
+        fmt::format("cannot write '{}': directory '{}' does not exist; create it, or "
+                    "give another path",
+                    path,
+                    dir.string()));
   }
   if (::access(dir.c_str(), W_OK) != 0) {
-    throw Error(fmt::format("cannot write '{}': directory '{}' is not writable ({}); give "
-                            "another path",
-                            path, dir.string(), std::strerror(errno)));
+    throw Error(
+        fmt::format("cannot write '{}': directory '{}' is not writable ({}); give "
+                    "another path",
+                    path,
+                    dir.string(),
+                    std::strerror(errno)));
   }
 }
 
 void RefuseOverwritingInput(const std::string& input, const std::string& output) {
   if (input == "-" || output == "-") return;
   // A device or a pipe named twice (/dev/null in and out) overwrites nothing.
-  if (output.empty() || ResolveOutput(output).kind != OutputTarget::Kind::kReplace) return;
+  if (output.empty() || ResolveOutput(output).kind != OutputTarget::Kind::kReplace)
+    return;
   std::error_code ec;
   bool same = fs::weakly_canonical(input, ec) == fs::weakly_canonical(output, ec) && !ec;
   if (!same && fs::exists(input, ec) && fs::exists(output, ec)) {
@@ -341,7 +358,8 @@ void RefuseOverwritingInput(const std::string& input, const std::string& output)
     throw Error(fmt::format(
         "output '{}' is the input file '{}'; mpcal does not overwrite its input: give "
         "another output path",
-        output, input));
+        output,
+        input));
   }
 }
 

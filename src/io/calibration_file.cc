@@ -14,13 +14,13 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "gyro_calibration_json.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/error.h"
-#include "mpcal/text_input.h"
 #include "mpcal/json_reader.h"
 #include "mpcal/log_reader.h"
 #include "mpcal/plausible.h"
-#include "gyro_calibration_json.h"
+#include "mpcal/text_input.h"
 
 namespace mpcal {
 namespace {
@@ -37,7 +37,8 @@ constexpr int kMajorVersion = 1;
 
 void CheckFinite(double v, const std::string& field) {
   if (!std::isfinite(v)) {
-    throw Error(fmt::format("cannot write the calibration: '{}' is {} (not finite)", field, v));
+    throw Error(
+        fmt::format("cannot write the calibration: '{}' is {} (not finite)", field, v));
   }
 }
 
@@ -101,14 +102,15 @@ SplitHalfSummary ReadSplitHalf(const JsonReader& r, const JsonReader::json& f) {
     const std::string at = JsonReader::Join(path, key);
     SplitHalfComparison c;
     c.kind = kind;
-    const JsonReader::json& counts = r.ArrayValue(r.Field(q, at, "positions"), at + ".positions", 2);
+    const JsonReader::json& counts =
+        r.ArrayValue(r.Field(q, at, "positions"), at + ".positions", 2);
     c.positions_first = static_cast<int>(r.NumberValue(counts[0], at + ".positions[0]"));
     c.positions_second = static_cast<int>(r.NumberValue(counts[1], at + ".positions[1]"));
     c.determined = r.Bool(q, at, "determined");
     if (c.determined) {
       c.dof = static_cast<int>(r.Integer(q, at, "dof", 1, kNumModelParameters));
-      const JsonReader::json& z = r.ArrayValue(r.Field(q, at, "z"), at + ".z",
-                                               static_cast<std::size_t>(c.dof));
+      const JsonReader::json& z =
+          r.ArrayValue(r.Field(q, at, "z"), at + ".z", static_cast<std::size_t>(c.dof));
       for (std::size_t i = 0; i < z.size(); ++i) {
         c.z.push_back(r.NumberValue(z[i], fmt::format("{}.z[{}]", at, i)));
       }
@@ -140,9 +142,13 @@ ErrorModel ReadModel(const JsonReader& r,
   // corrupt file, not a sensor (plausible.h). Its 1σ too.
   for (int i = 0; i < 3; ++i) {
     if (!(std::abs(m.bias_mps2[i]) <= kMaxBiasMps2)) {
-      r.Fail(fmt::format("'{}bias_mps2[{}]' = {} is beyond any accelerometer's bias (±{:g} "
-                         "m/s², 10 g)",
-                         path.empty() ? "" : path + ".", i, m.bias_mps2[i], kMaxBiasMps2));
+      r.Fail(
+          fmt::format("'{}bias_mps2[{}]' = {} is beyond any accelerometer's bias (±{:g} "
+                      "m/s², 10 g)",
+                      path.empty() ? "" : path + ".",
+                      i,
+                      m.bias_mps2[i],
+                      kMaxBiasMps2));
     }
   }
   if (is_std) {
@@ -204,7 +210,8 @@ std::string CalibrationToJson(const Calibration& c) {
   PutModel(j, c.model, "");
   if (c.bias_drift) {
     j["bias_drift_mps2_per_s"] = Vec3(c.bias_drift->mps2_per_s, "bias_drift_mps2_per_s");
-    j["bias_reference_time_s"] = Num(c.bias_drift->reference_time_s, "bias_reference_time_s");
+    j["bias_reference_time_s"] =
+        Num(c.bias_drift->reference_time_s, "bias_reference_time_s");
     j["bias_drift_p_value"] = Num(c.bias_drift->p_value, "bias_drift_p_value");
   }
   if (c.std) {
@@ -226,9 +233,11 @@ std::string CalibrationToJson(const Calibration& c) {
                 {"iterations", f.iterations},
                 {"converged", f.converged},
                 {"excluded_positions", f.excluded_positions}};
-    if (f.variance_factor) fit["variance_factor"] = Num(*f.variance_factor, "fit.variance_factor");
+    if (f.variance_factor)
+      fit["variance_factor"] = Num(*f.variance_factor, "fit.variance_factor");
     if (f.position_scatter_mps2) {
-      fit["position_scatter_mps2"] = Num(*f.position_scatter_mps2, "fit.position_scatter_mps2");
+      fit["position_scatter_mps2"] =
+          Num(*f.position_scatter_mps2, "fit.position_scatter_mps2");
     }
     if (f.cross_validation_rms_mps2) {
       fit["cross_validation_rms_mps2"] =
@@ -241,14 +250,16 @@ std::string CalibrationToJson(const Calibration& c) {
   for (std::size_t i = 0; i < c.positions.size(); ++i) {
     const PositionSummary& p = c.positions[i];
     const std::string at = fmt::format("positions[{}].", i);
-    json q = {{"start_s", Num(p.start_s, at + "start_s")},
-              {"end_s", Num(p.end_s, at + "end_s")},
-              {"samples", p.samples},
-              {"mean_mps2", Vec3(p.mean_mps2, at + "mean_mps2")},
-              {"sample_std_mps2", Vec3(p.sample_std_mps2, at + "sample_std_mps2")},
-              {"residual_before_mps2", Num(p.residual_before_mps2, at + "residual_before_mps2")},
-              {"residual_after_mps2", Num(p.residual_after_mps2, at + "residual_after_mps2")},
-              {"used", p.used}};
+    json q = {
+        {"start_s", Num(p.start_s, at + "start_s")},
+        {"end_s", Num(p.end_s, at + "end_s")},
+        {"samples", p.samples},
+        {"mean_mps2", Vec3(p.mean_mps2, at + "mean_mps2")},
+        {"sample_std_mps2", Vec3(p.sample_std_mps2, at + "sample_std_mps2")},
+        {"residual_before_mps2",
+         Num(p.residual_before_mps2, at + "residual_before_mps2")},
+        {"residual_after_mps2", Num(p.residual_after_mps2, at + "residual_after_mps2")},
+        {"used", p.used}};
     if (p.cross_validation_residual_mps2) {
       q["cross_validation_residual_mps2"] =
           Num(*p.cross_validation_residual_mps2, at + "cross_validation_residual_mps2");
@@ -280,39 +291,49 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
   const std::string model = r.String(j, "", "model");
   const auto kind = ParseModelKind(model);
   if (!kind) {
-    r.Fail(fmt::format("unknown model '{}' (known: {}, {})", model,
-                       ToString(ModelKind::kShinElSheimy9), ToString(ModelKind::kBiasScale6)));
+    r.Fail(fmt::format("unknown model '{}' (known: {}, {})",
+                       model,
+                       ToString(ModelKind::kShinElSheimy9),
+                       ToString(ModelKind::kBiasScale6)));
   }
   c.model_kind = *kind;
   c.gravity_mps2 = r.Number(j, "", "gravity_mps2");
   if (!IsPlausibleGravity(c.gravity_mps2)) {
-    r.Fail(fmt::format("'gravity_mps2' = {} is not a magnitude of gravity on Earth (m/s²)",
-                       c.gravity_mps2));
+    r.Fail(
+        fmt::format("'gravity_mps2' = {} is not a magnitude of gravity on Earth (m/s²)",
+                    c.gravity_mps2));
   }
   const json& input = r.Object(j, "", "input");
   const std::string units = r.String(input, "input", "units");
   const auto parsed_units = ParseAccelUnits(units);
   if (!parsed_units) {
-    r.Fail(fmt::format("unknown units '{}' in 'input.units' (known: mps2, g, counts)", units));
+    r.Fail(fmt::format("unknown units '{}' in 'input.units' (known: mps2, g, counts)",
+                       units));
   }
   c.input_units = *parsed_units;
   c.mps2_per_unit = r.Number(input, "input", "mps2_per_unit");
   if (!(c.mps2_per_unit >= kStandardGravityMps2 / kMaxCountsPerG &&
         c.mps2_per_unit <= kStandardGravityMps2 / kMinCountsPerG)) {
-    r.Fail(fmt::format("'input.mps2_per_unit' = {} is not a sensor's scale (between {:g} and "
-                       "{:g} counts per g)",
-                       c.mps2_per_unit, kMinCountsPerG, kMaxCountsPerG));
+    r.Fail(fmt::format(
+        "'input.mps2_per_unit' = {} is not a sensor's scale (between {:g} and "
+        "{:g} counts per g)",
+        c.mps2_per_unit,
+        kMinCountsPerG,
+        kMaxCountsPerG));
   }
   if (const auto fixed = FixedMps2PerUnit(c.input_units);
       fixed && std::abs(c.mps2_per_unit - *fixed) > 1e-9 * *fixed) {
     r.Fail(fmt::format("'input.mps2_per_unit' is {} but units '{}' mean {} m/s² per unit",
-                       c.mps2_per_unit, units, *fixed));
+                       c.mps2_per_unit,
+                       units,
+                       *fixed));
   }
   if (input.contains("scale_reference")) {
     c.scale_reference = r.String(input, "input", "scale_reference");
     if (c.scale_reference != "fitted_sphere" && c.scale_reference != "datasheet") {
-      r.Fail(fmt::format("'input.scale_reference' is '{}'; expected fitted_sphere or datasheet",
-                         c.scale_reference));
+      r.Fail(fmt::format(
+          "'input.scale_reference' is '{}'; expected fitted_sphere or datasheet",
+          c.scale_reference));
     }
   }
   if (input.contains("columns")) {
@@ -336,8 +357,10 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
   if (c.model_kind == ModelKind::kBiasScale6 &&
       (c.model.theta_yz_rad != 0.0 || c.model.theta_zx_rad != 0.0 ||
        c.model.theta_zy_rad != 0.0)) {
-    r.Fail("model 'bias-scale-6' has no non-orthogonality, but 'non_orthogonality_rad' is not "
-           "zero");
+    r.Fail(
+        "model 'bias-scale-6' has no non-orthogonality, but 'non_orthogonality_rad' is "
+        "not "
+        "zero");
   }
   if (j.contains("std")) {
     r.Object(j, "", "std");
@@ -362,23 +385,27 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
     fit.iterations = static_cast<int>(r.Integer(f, "fit", "iterations", 0));
     fit.converged = r.Bool(f, "fit", "converged");
     if (f.contains("excluded_positions")) {
-      fit.excluded_positions = static_cast<int>(r.Integer(f, "fit", "excluded_positions", 0));
+      fit.excluded_positions =
+          static_cast<int>(r.Integer(f, "fit", "excluded_positions", 0));
     }
     fit.variance_factor = r.OptionalNumber(f, "fit", "variance_factor");
     fit.position_scatter_mps2 = r.OptionalNumber(f, "fit", "position_scatter_mps2");
-    fit.cross_validation_rms_mps2 = r.OptionalNumber(f, "fit", "cross_validation_rms_mps2");
+    fit.cross_validation_rms_mps2 =
+        r.OptionalNumber(f, "fit", "cross_validation_rms_mps2");
     if (f.contains("split_half")) fit.split_half = ReadSplitHalf(r, f);
     c.fit = fit;
   }
   if (j.contains("positions")) {
     const json& ps = j["positions"];
     if (!ps.is_array()) {
-      r.Fail(fmt::format("field 'positions' must be an array, found {}", JsonReader::TypeName(ps)));
+      r.Fail(fmt::format("field 'positions' must be an array, found {}",
+                         JsonReader::TypeName(ps)));
     }
     for (std::size_t i = 0; i < ps.size(); ++i) {
       const std::string at = fmt::format("positions[{}]", i);
       if (!ps[i].is_object()) {
-        r.Fail(fmt::format("'{}' must be an object, found {}", at, JsonReader::TypeName(ps[i])));
+        r.Fail(fmt::format(
+            "'{}' must be an object, found {}", at, JsonReader::TypeName(ps[i])));
       }
       const json& q = ps[i];
       PositionSummary p;
@@ -386,7 +413,8 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
       p.end_s = r.Number(q, at, "end_s");
       for (const double t : {p.start_s, p.end_s}) {
         if (!(std::abs(t) <= kMaxTimeS)) {
-          r.Fail(fmt::format("'{}' has a time of {:.6g} s, beyond any logger's clock", at, t));
+          r.Fail(fmt::format(
+              "'{}' has a time of {:.6g} s, beyond any logger's clock", at, t));
         }
       }
       p.samples = static_cast<std::size_t>(
@@ -395,7 +423,8 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
       p.sample_std_mps2 = r.Vector(q, at, "sample_std_mps2");
       p.residual_before_mps2 = r.Number(q, at, "residual_before_mps2");
       p.residual_after_mps2 = r.Number(q, at, "residual_after_mps2");
-      p.cross_validation_residual_mps2 = r.OptionalNumber(q, at, "cross_validation_residual_mps2");
+      p.cross_validation_residual_mps2 =
+          r.OptionalNumber(q, at, "cross_validation_residual_mps2");
       p.used = q.contains("used") ? r.Bool(q, at, "used") : true;
       c.positions.push_back(p);
     }
@@ -408,8 +437,8 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
     }
     for (std::size_t i = 0; i < w.size(); ++i) {
       if (!w[i].is_string()) {
-        r.Fail(fmt::format("'warnings[{}]' must be a string, found {}", i,
-                           JsonReader::TypeName(w[i])));
+        r.Fail(fmt::format(
+            "'warnings[{}]' must be a string, found {}", i, JsonReader::TypeName(w[i])));
       }
       c.warnings.push_back(w[i].get<std::string>());
     }
@@ -429,13 +458,15 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
 Calibration ReadCalibrationFile(const std::string& path) {
   std::error_code ec;
   if (path != "-" && std::filesystem::is_directory(path, ec)) {
-    throw Error(fmt::format("calibration file '{}' is a directory; give the JSON file written "
-                            "by 'mpcal calibrate'",
-                            path));
+    throw Error(
+        fmt::format("calibration file '{}' is a directory; give the JSON file written "
+                    "by 'mpcal calibrate'",
+                    path));
   }
   // Checked before it is read to the end: /dev/zero or a video named by
   // mistake is refused at once.
-  const std::string text = ReadTextInput(path, kMaxCalibrationFileBytes, "calibration file");
+  const std::string text =
+      ReadTextInput(path, kMaxCalibrationFileBytes, "calibration file");
   return CalibrationFromJson(text, path == "-" ? "<stdin>" : path);
 }
 

@@ -19,8 +19,8 @@ constexpr std::string_view kPath = "gyroscope";
 
 double Finite(double v, const std::string& field) {
   if (!std::isfinite(v)) {
-    throw Error(fmt::format("cannot write the calibration: '{}.{}' is {} (not finite)", kPath,
-                            field, v));
+    throw Error(fmt::format(
+        "cannot write the calibration: '{}.{}' is {} (not finite)", kPath, field, v));
   }
   return v;
 }
@@ -31,7 +31,9 @@ json Array(const double* v, int n, const std::string& field) {
   return a;
 }
 
-json Vec3(const Eigen::Vector3d& v, const std::string& field) { return Array(v.data(), 3, field); }
+json Vec3(const Eigen::Vector3d& v, const std::string& field) {
+  return Array(v.data(), 3, field);
+}
 
 json RowMajor(const Eigen::Matrix3d& m, const std::string& field) {
   double v[9];
@@ -40,8 +42,11 @@ json RowMajor(const Eigen::Matrix3d& m, const std::string& field) {
 }
 
 // `size` finite numbers at `key` of `object`.
-std::vector<double> Numbers(const JsonReader& r, const json& object, const std::string& path,
-                            std::string_view key, std::size_t size) {
+std::vector<double> Numbers(const JsonReader& r,
+                            const json& object,
+                            const std::string& path,
+                            std::string_view key,
+                            std::size_t size) {
   const std::string field = JsonReader::Join(path, key);
   const json& a = r.ArrayValue(r.Field(object, path, key), field, size);
   std::vector<double> v;
@@ -79,15 +84,16 @@ json GyroToJson(const GyroCalibration& g) {
   }
   if (g.fit) {
     const GyroFitSummary& f = *g.fit;
-    j["fit"] = {
-        {"turns", f.turns},
-        {"residual_rms_before_rad", Finite(f.residual_rms_before_rad, "fit.residual_rms_before_rad")},
-        {"residual_rms_after_rad", Finite(f.residual_rms_after_rad, "fit.residual_rms_after_rad")},
-        {"iterations", f.iterations},
-        {"converged", f.converged},
-        {"variance_factor", Finite(f.variance_factor, "fit.variance_factor")},
-        {"noise_std_radps", Finite(f.noise_std_radps, "fit.noise_std_radps")},
-        {"sample_period_s", Finite(f.sample_period_s, "fit.sample_period_s")}};
+    j["fit"] = {{"turns", f.turns},
+                {"residual_rms_before_rad",
+                 Finite(f.residual_rms_before_rad, "fit.residual_rms_before_rad")},
+                {"residual_rms_after_rad",
+                 Finite(f.residual_rms_after_rad, "fit.residual_rms_after_rad")},
+                {"iterations", f.iterations},
+                {"converged", f.converged},
+                {"variance_factor", Finite(f.variance_factor, "fit.variance_factor")},
+                {"noise_std_radps", Finite(f.noise_std_radps, "fit.noise_std_radps")},
+                {"sample_period_s", Finite(f.sample_period_s, "fit.sample_period_s")}};
   }
   json positions = json::array();
   for (const GyroBiasSample& b : g.position_bias) {
@@ -101,7 +107,8 @@ json GyroToJson(const GyroCalibration& g) {
 GyroCalibration GyroFromJson(const JsonReader& r, const json& object) {
   const std::string path(kPath);
   if (!object.is_object()) {
-    r.Fail(fmt::format("'{}' must be an object, found {}", path, JsonReader::TypeName(object)));
+    r.Fail(fmt::format(
+        "'{}' must be an object, found {}", path, JsonReader::TypeName(object)));
   }
   GyroCalibration g;
   const json& input = r.Object(object, path, "input");
@@ -109,20 +116,22 @@ GyroCalibration GyroFromJson(const JsonReader& r, const json& object) {
   const std::string units = r.String(input, ipath, "units");
   const auto parsed = ParseGyroUnits(units);
   if (!parsed) {
-    r.Fail(fmt::format("unknown units '{}' in '{}.units' (known: rads, dps, counts)", units,
-                       ipath));
+    r.Fail(fmt::format(
+        "unknown units '{}' in '{}.units' (known: rads, dps, counts)", units, ipath));
   }
   g.input_units = *parsed;
   g.radps_per_unit = r.Number(input, ipath, "radps_per_unit");
   if (!(g.radps_per_unit > 0.0)) {
-    r.Fail(fmt::format("'{}.radps_per_unit' must be positive, found {}", ipath,
-                       g.radps_per_unit));
+    r.Fail(fmt::format(
+        "'{}.radps_per_unit' must be positive, found {}", ipath, g.radps_per_unit));
   }
   g.m = Matrix(Numbers(r, object, path, "m", 9));
   if (std::abs(g.m.determinant()) < 0.1) {
-    r.Fail(fmt::format("'{}.m' is not a gyroscope matrix (determinant {:.3g}; near 1 for any "
-                       "gyroscope)",
-                       path, g.m.determinant()));
+    r.Fail(fmt::format(
+        "'{}.m' is not a gyroscope matrix (determinant {:.3g}; near 1 for any "
+        "gyroscope)",
+        path,
+        g.m.determinant()));
   }
   g.bias_radps = r.Vector(object, path, "bias_radps");
   if (object.contains("g_sensitivity_radps_per_mps2")) {
@@ -131,7 +140,8 @@ GyroCalibration GyroFromJson(const JsonReader& r, const json& object) {
   }
   if (object.contains("std")) {
     const json& s = r.Object(object, path, "std");
-    if (s.contains("bias_radps")) g.bias_std_radps = r.Vector(s, path + ".std", "bias_radps");
+    if (s.contains("bias_radps"))
+      g.bias_std_radps = r.Vector(s, path + ".std", "bias_radps");
   }
   if (object.contains("m_covariance")) {
     const std::vector<double> v = Numbers(r, object, path, "m_covariance", 81);
@@ -156,15 +166,18 @@ GyroCalibration GyroFromJson(const JsonReader& r, const json& object) {
   if (object.contains("position_bias")) {
     const json& ps = object["position_bias"];
     if (!ps.is_array()) {
-      r.Fail(fmt::format("'{}.position_bias' must be an array, found {}", path,
+      r.Fail(fmt::format("'{}.position_bias' must be an array, found {}",
+                         path,
                          JsonReader::TypeName(ps)));
     }
     for (std::size_t i = 0; i < ps.size(); ++i) {
       const std::string at = fmt::format("{}.position_bias[{}]", path, i);
       if (!ps[i].is_object()) {
-        r.Fail(fmt::format("'{}' must be an object, found {}", at, JsonReader::TypeName(ps[i])));
+        r.Fail(fmt::format(
+            "'{}' must be an object, found {}", at, JsonReader::TypeName(ps[i])));
       }
-      g.position_bias.push_back({r.Number(ps[i], at, "t_s"), r.Vector(ps[i], at, "bias_radps")});
+      g.position_bias.push_back(
+          {r.Number(ps[i], at, "t_s"), r.Vector(ps[i], at, "bias_radps")});
     }
   }
   return g;

@@ -96,10 +96,25 @@ Role RoleOfName(std::string_view name) {
     // Loggers name the time column after its unit: Arduino's millis() and
     // micros(), `timestamp_ms`, `time_us`, `Time (s)` (the bracket is
     // dropped by NormaliseName; TimeUnitOfName reads it).
-    for (const char* t : {"millis", "micros", "nanos", "times", "timesec", "timems",
-                          "timeus", "timens", "tms", "tus", "tns", "timestampms",
-                          "timestampus", "timestampns", "timestamps", "elapsed",
-                          "elapsedms", "elapsedus", "seconds"}) {
+    for (const char* t : {"millis",
+                          "micros",
+                          "nanos",
+                          "times",
+                          "timesec",
+                          "timems",
+                          "timeus",
+                          "timens",
+                          "tms",
+                          "tus",
+                          "tns",
+                          "timestampms",
+                          "timestampus",
+                          "timestampns",
+                          "timestamps",
+                          "elapsed",
+                          "elapsedms",
+                          "elapsedus",
+                          "seconds"}) {
       m[t] = kTime;
     }
     const char* axes = "xyz";
@@ -136,10 +151,12 @@ std::optional<TimeUnit> TimeUnitOfName(std::string_view name) {
     if (inside == "ns") return TimeUnit::kNanoseconds;
   }
   const std::string n = NormaliseName(name);
-  if (n == "millis" || n == "timems" || n == "tms" || n == "timestampms" || n == "elapsedms") {
+  if (n == "millis" || n == "timems" || n == "tms" || n == "timestampms" ||
+      n == "elapsedms") {
     return TimeUnit::kMilliseconds;
   }
-  if (n == "micros" || n == "timeus" || n == "tus" || n == "timestampus" || n == "elapsedus") {
+  if (n == "micros" || n == "timeus" || n == "tus" || n == "timestampus" ||
+      n == "elapsedus") {
     return TimeUnit::kMicroseconds;
   }
   if (n == "nanos" || n == "timens" || n == "tns" || n == "timestampns") {
@@ -211,16 +228,20 @@ bool ParsesAsNumber(std::string_view field, char decimal_point) {
   if (field.empty()) return false;
   double v = 0;
   const auto r = fast_float::from_chars_advanced(
-      field.data(), field.data() + field.size(), v,
+      field.data(),
+      field.data() + field.size(),
+      v,
       fast_float::parse_options{fast_float::chars_format::general, decimal_point});
   return r.ec == std::errc() && r.ptr == field.data() + field.size();
 }
 
 bool LooksLikeInteger(std::string_view field) {
   field = StripQuotes(field);
-  if (!field.empty() && (field.front() == '-' || field.front() == '+')) field.remove_prefix(1);
+  if (!field.empty() && (field.front() == '-' || field.front() == '+'))
+    field.remove_prefix(1);
   if (field.empty()) return false;
-  return std::all_of(field.begin(), field.end(), [](char c) { return c >= '0' && c <= '9'; });
+  return std::all_of(
+      field.begin(), field.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
 struct ColumnSpec {
@@ -383,10 +404,12 @@ struct ScannerState {
       return;
     }
     source = path;
-    struct stat st{};
+    struct stat st {};
     if (::stat(path.c_str(), &st) != 0) {
       const int err = errno;
-      throw Error(fmt::format("cannot read log '{}': {}{}", path, std::strerror(err),
+      throw Error(fmt::format("cannot read log '{}': {}{}",
+                              path,
+                              std::strerror(err),
                               err == ENOENT ? " (check the path)" : ""));
     }
     if (S_ISDIR(st.st_mode)) {
@@ -465,8 +488,10 @@ struct ScannerState {
       }
       if (end - begin >= kMaxLineBytes) {
         throw Error(fmt::format(
-            "{}:{}: line longer than {} KiB: this does not look like a text log", source,
-            line_number + 1, kMaxLineBytes / 1024));
+            "{}:{}: line longer than {} KiB: this does not look like a text log",
+            source,
+            line_number + 1,
+            kMaxLineBytes / 1024));
       }
       Refill(false);
     }
@@ -487,8 +512,8 @@ struct ScannerState {
       }
     }
     if (last_noise == n) return 0;
-    const auto* nl = static_cast<const char*>(
-        std::memchr(buf.data() + last_noise, '\n', std::min(end, kBootBytes) - last_noise));
+    const auto* nl = static_cast<const char*>(std::memchr(
+        buf.data() + last_noise, '\n', std::min(end, kBootBytes) - last_noise));
     if (nl == nullptr) return 0;
     const std::size_t start = static_cast<std::size_t>(nl - buf.data()) + 1;
     // Some text must follow, or this is a binary file.
@@ -505,7 +530,8 @@ struct ScannerState {
         throw Error(fmt::format(
             "'{}' is not a text log (binary data at byte {}); mpcal reads delimited text "
             "(CSV, TSV or whitespace separated numbers)",
-            source, i));
+            source,
+            i));
       }
       if (c < 0x20 && c != '\n' && c != '\r' && c != '\t' && c != '\f') ++controls;
     }
@@ -519,15 +545,18 @@ struct ScannerState {
     if (head.find('\n') == std::string_view::npos &&
         std::count(head.begin(), head.end(), '\r') > 1) {
       throw Error(fmt::format(
-          "'{}' ends its lines with a carriage return alone (classic Mac OS); mpcal reads "
+          "'{}' ends its lines with a carriage return alone (classic Mac OS); mpcal "
+          "reads "
           "LF or CRLF line ends: convert it with tr '\\r' '\\n' < '{}' > fixed.csv",
-          source, source));
+          source,
+          source));
     }
   }
 
   static bool IsCommentOrBlank(std::string_view text) {
     std::size_t i = 0;
-    while (i < text.size() && (IsBlank(text[i]) || text[i] == '\r' || text[i] == '\f')) ++i;
+    while (i < text.size() && (IsBlank(text[i]) || text[i] == '\r' || text[i] == '\f'))
+      ++i;
     return i == text.size() || text[i] == '#' || text[i] == '%';
   }
 
@@ -621,7 +650,8 @@ struct ScannerState {
     // Bytes of the lines before start_line, from the unconsumed start.
     std::size_t pos = begin;
     for (std::size_t line = 1; line < start_line; ++line) {
-      const auto* nl = static_cast<const char*>(std::memchr(buf.data() + pos, '\n', end - pos));
+      const auto* nl =
+          static_cast<const char*>(std::memchr(buf.data() + pos, '\n', end - pos));
       pos = static_cast<std::size_t>(nl - buf.data()) + 1;
     }
     skipped_lines = start_line - 1;
@@ -631,11 +661,16 @@ struct ScannerState {
   }
 
   void WarnSkipped(std::size_t start_line, bool header) {
-    warnings.push_back(fmt::format(
-        "'{}': skipped {} line{} before the {} (serial boot text or a title); the {} starts "
-        "on line {}",
-        source, skipped_lines, skipped_lines == 1 ? "" : "s", header ? "header" : "data",
-        header ? "header" : "data", start_line));
+    warnings.push_back(
+        fmt::format("'{}': skipped {} line{} before the {} (serial boot text or a "
+                    "title); the {} starts "
+                    "on line {}",
+                    source,
+                    skipped_lines,
+                    skipped_lines == 1 ? "" : "s",
+                    header ? "header" : "data",
+                    header ? "header" : "data",
+                    start_line));
   }
 
   void Detect(bool parse_gyro) {
@@ -660,7 +695,8 @@ struct ScannerState {
       std::size_t pos = begin;
       std::size_t number = 0;
       while (pos < end && static_cast<int>(lines.size()) < kSniffLines) {
-        const auto* nl = static_cast<const char*>(std::memchr(buf.data() + pos, '\n', end - pos));
+        const auto* nl =
+            static_cast<const char*>(std::memchr(buf.data() + pos, '\n', end - pos));
         if (nl == nullptr && !eof) break;  // incomplete line: not needed to sniff
         const std::size_t stop = nl ? static_cast<std::size_t>(nl - buf.data()) : end;
         std::string_view text(buf.data() + pos, stop - pos);
@@ -678,8 +714,8 @@ struct ScannerState {
             "(t, ax, ay, az)",
             source));
       }
-      throw Error(fmt::format("'{}': no data line in its first {} KiB", source,
-                              kChunkBytes / 1024));
+      throw Error(fmt::format(
+          "'{}': no data line in its first {} KiB", source, kChunkBytes / 1024));
     }
 
     // Delimiter: the first of tab, semicolon, comma present in every sniffed
@@ -720,7 +756,8 @@ struct ScannerState {
       if (comma && !dot) decimal_point = ',';
     }
     layout.decimal_point = decimal_point;
-    number_format = fast_float::parse_options{fast_float::chars_format::general, decimal_point};
+    number_format =
+        fast_float::parse_options{fast_float::chars_format::general, decimal_point};
 
     // Header: the first content line when it is not all numbers.
     auto text_fields = [&](std::string_view text) {
@@ -740,9 +777,11 @@ struct ScannerState {
       first_data = 1;
       if (lines.size() == 1) {
         if (eof) {
-          throw Error(fmt::format(
-              "'{}' has a header (line {}: '{}') but no data rows after it", source,
-              lines[0].line, Printable(lines[0].text, 60)));
+          throw Error(
+              fmt::format("'{}' has a header (line {}: '{}') but no data rows after it",
+                          source,
+                          lines[0].line,
+                          Printable(lines[0].text, 60)));
         }
       } else if (const auto second_text = text_fields(lines[1].text);
                  second_text.size() >= first_text.size()) {
@@ -752,12 +791,16 @@ struct ScannerState {
         throw Error(fmt::format(
             "{}:{}: expected a row of numbers separated by {}, found '{}' ('{}' is not a "
             "number); is this an accelerometer log?",
-            source, lines[1].line, DelimiterName(delimiter), Printable(lines[1].text, 60),
+            source,
+            lines[1].line,
+            DelimiterName(delimiter),
+            Printable(lines[1].text, 60),
             Printable(second_text.front())));
       }
     }
     const std::size_t first_data_columns =
-        first_data < lines.size() ? SplitFields(lines[first_data].text, delimiter).size() : 0;
+        first_data < lines.size() ? SplitFields(lines[first_data].text, delimiter).size()
+                                  : 0;
     if (layout.column_names.empty()) {
       for (std::size_t i = 0; i < first_data_columns; ++i) {
         layout.column_names.push_back(fmt::format("column {}", i));
@@ -769,8 +812,12 @@ struct ScannerState {
         static_cast<int>(first_data_columns) < layout.min_columns) {
       throw Error(fmt::format(
           "{}:{}: too few columns: found {}, expected at least {} separated by {} ({})",
-          source, lines[first_data].line, first_data_columns, layout.min_columns,
-          DelimiterName(delimiter), layout.Describe()));
+          source,
+          lines[first_data].line,
+          first_data_columns,
+          layout.min_columns,
+          DelimiterName(delimiter),
+          layout.Describe()));
     }
 
     std::vector<std::string_view> time_fields;
@@ -813,7 +860,8 @@ struct ScannerState {
       for (int c = 0; c < static_cast<int>(layout.column_names.size()); ++c) {
         const Role r = RoleOfName(layout.column_names[c]);
         if (r != kNone && column[r] < 0) column[r] = c;
-        if (r == kNone && sample_index_column < 0 && IsSampleIndexName(layout.column_names[c])) {
+        if (r == kNone && sample_index_column < 0 &&
+            IsSampleIndexName(layout.column_names[c])) {
           sample_index_column = c;
         }
       }
@@ -831,10 +879,14 @@ struct ScannerState {
             }
           }
           if (spec.index < 0) {
-            throw Error(fmt::format(
-                "--columns: {}={}: the header (line {}) has no column '{}'; its columns are: {}",
-                kRoleKeys[spec.role], spec.name, layout.header_line, spec.name,
-                fmt::join(layout.column_names, ", ")));
+            throw Error(
+                fmt::format("--columns: {}={}: the header (line {}) has no column '{}'; "
+                            "its columns are: {}",
+                            kRoleKeys[spec.role],
+                            spec.name,
+                            layout.header_line,
+                            spec.name,
+                            fmt::join(layout.column_names, ", ")));
           }
         }
         column[spec.role] = spec.index;
@@ -842,29 +894,39 @@ struct ScannerState {
       if (column[kTime] < 0 && sample_index_column >= 0) {
         column[kTime] = sample_index_column;
         layout.time_column = sample_index_column;
-        if (options.time_unit == TimeUnit::kAuto) options.time_unit = TimeUnit::kSampleIndex;
+        if (options.time_unit == TimeUnit::kAuto)
+          options.time_unit = TimeUnit::kSampleIndex;
         if (options.time_unit == TimeUnit::kSampleIndex && options.rate_hz <= 0.0) {
-          throw Error(fmt::format(
-              "'{}': column '{}' counts samples rather than time: give the sample rate with "
-              "--rate HZ (or --time-unit s if it holds seconds)",
-              source, layout.column_names[sample_index_column]));
+          throw Error(
+              fmt::format("'{}': column '{}' counts samples rather than time: give the "
+                          "sample rate with "
+                          "--rate HZ (or --time-unit s if it holds seconds)",
+                          source,
+                          layout.column_names[sample_index_column]));
         }
       }
       if (column[kAx] < 0 && column[kAy] < 0 && column[kAz] < 0) {
         throw Error(fmt::format(
-            "{}:{}: the header names no accelerometer columns (found: {}); expected ax/acc_x/"
+            "{}:{}: the header names no accelerometer columns (found: {}); expected "
+            "ax/acc_x/"
             "accel_x/accX (and y, z), or say which columns they are with --columns "
             "t=NAME,ax=NAME,ay=NAME,az=NAME",
-            source, layout.header_line, fmt::join(layout.column_names, ", ")));
+            source,
+            layout.header_line,
+            fmt::join(layout.column_names, ", ")));
       }
     } else {
       bool mapped = false;
       for (const auto& spec : specs) {
         if (spec.index < 0) {
-          throw Error(fmt::format(
-              "--columns: {}={}: the log '{}' has no header line naming its columns; give "
-              "0-based column indices instead (e.g. {}=1)",
-              kRoleKeys[spec.role], spec.name, source, kRoleKeys[spec.role]));
+          throw Error(
+              fmt::format("--columns: {}={}: the log '{}' has no header line naming its "
+                          "columns; give "
+                          "0-based column indices instead (e.g. {}=1)",
+                          kRoleKeys[spec.role],
+                          spec.name,
+                          source,
+                          kRoleKeys[spec.role]));
         }
         column[spec.role] = spec.index;
         mapped = true;
@@ -885,22 +947,29 @@ struct ScannerState {
     for (int r = kAx; r <= kAz; ++r) {
       if (column[r] < 0) {
         throw Error(fmt::format(
-            "'{}': no column for {}{}; name it with --columns {}=NAME|INDEX", source,
-            kRoleKeys[r], header ? fmt::format(" in the header (line {})", layout.header_line) : "",
+            "'{}': no column for {}{}; name it with --columns {}=NAME|INDEX",
+            source,
+            kRoleKeys[r],
+            header ? fmt::format(" in the header (line {})", layout.header_line) : "",
             kRoleKeys[r]));
       }
     }
     const int gyros = (column[kGx] >= 0) + (column[kGy] >= 0) + (column[kGz] >= 0);
     if (gyros != 0 && gyros != 3) {
-      throw Error(fmt::format(
-          "'{}': found {} of the 3 gyroscope columns; give all of gx, gy, gz with --columns",
-          source, gyros));
+      throw Error(
+          fmt::format("'{}': found {} of the 3 gyroscope columns; give all of gx, gy, gz "
+                      "with --columns",
+                      source,
+                      gyros));
     }
     for (int r = kTime; r <= kGz; ++r) {
       for (int q = r + 1; q <= kGz; ++q) {
         if (column[r] >= 0 && column[r] == column[q]) {
-          throw Error(fmt::format("'{}': {} and {} are both column index {}", source,
-                                  kRoleKeys[r], kRoleKeys[q], column[r]));
+          throw Error(fmt::format("'{}': {} and {} are both column index {}",
+                                  source,
+                                  kRoleKeys[r],
+                                  kRoleKeys[q],
+                                  column[r]));
         }
       }
     }
@@ -917,9 +986,11 @@ struct ScannerState {
     layout.min_columns = max_column + 1;
     if (layout.time_column < 0 && options.rate_hz <= 0.0) {
       throw Error(fmt::format(
-          "'{}': no time column{}: give it with --columns t=NAME|INDEX, or the sample rate "
+          "'{}': no time column{}: give it with --columns t=NAME|INDEX, or the sample "
+          "rate "
           "with --rate HZ",
-          source, header ? fmt::format(" in the header (line {})", layout.header_line) : ""));
+          source,
+          header ? fmt::format(" in the header (line {})", layout.header_line) : ""));
     }
     (void)data_columns;
   }
@@ -960,18 +1031,19 @@ struct ScannerState {
             // 0, 1, 2, ... is a sample counter (an ADXL345 sketch's `n`), not
             // milliseconds: read as ms it would blame the hold times.
             throw Error(fmt::format(
-                "'{}': column '{}' steps by exactly 1 on every row: it is a sample index, "
+                "'{}': column '{}' steps by exactly 1 on every row: it is a sample "
+                "index, "
                 "not a time; give the sample rate in Hz (or its time unit, if it holds "
                 "milliseconds at 1 kHz)",
-                source, layout.column_names[layout.time_column]));
+                source,
+                layout.column_names[layout.time_column]));
           } else {
             // The unit that makes the sample period most like an IMU's (10 ms,
             // on a log scale), among periods from 50 µs to 2 s.
             double best = std::numeric_limits<double>::infinity();
-            for (auto [candidate, seconds] :
-                 {std::pair{TimeUnit::kNanoseconds, 1e-9},
-                  std::pair{TimeUnit::kMicroseconds, 1e-6},
-                  std::pair{TimeUnit::kMilliseconds, 1e-3}}) {
+            for (auto [candidate, seconds] : {std::pair{TimeUnit::kNanoseconds, 1e-9},
+                                              std::pair{TimeUnit::kMicroseconds, 1e-6},
+                                              std::pair{TimeUnit::kMilliseconds, 1e-3}}) {
               const double period = spacing * seconds;
               if (period < 5e-5 || period > 2.0) continue;
               const double distance = std::abs(std::log10(period / 1e-2));
@@ -984,11 +1056,14 @@ struct ScannerState {
               const double seconds = unit == TimeUnit::kNanoseconds    ? 1e-9
                                      : unit == TimeUnit::kMicroseconds ? 1e-6
                                                                        : 1e-3;
-              warnings.push_back(fmt::format(
-                  "integer timestamps in '{}' taken as {} (typical spacing {:g}, i.e. {:.4g} "
-                  "Hz); give --time-unit if that is wrong",
-                  layout.column_names[layout.time_column], ToString(unit), spacing,
-                  1.0 / (spacing * seconds)));
+              warnings.push_back(
+                  fmt::format("integer timestamps in '{}' taken as {} (typical spacing "
+                              "{:g}, i.e. {:.4g} "
+                              "Hz); give --time-unit if that is wrong",
+                              layout.column_names[layout.time_column],
+                              ToString(unit),
+                              spacing,
+                              1.0 / (spacing * seconds)));
             }
           }
         }
@@ -998,9 +1073,10 @@ struct ScannerState {
     switch (unit) {
       case TimeUnit::kSampleIndex:
         if (options.rate_hz <= 0.0) {
-          throw Error(fmt::format(
-              "'{}': the time column is a sample index: give the sample rate with --rate HZ",
-              source));
+          throw Error(
+              fmt::format("'{}': the time column is a sample index: give the sample rate "
+                          "with --rate HZ",
+                          source));
         }
         layout.seconds_per_time_unit = 1.0 / options.rate_hz;
         break;
@@ -1022,8 +1098,9 @@ struct ScannerState {
     const std::string name =
         column < static_cast<int>(layout.column_names.size()) && layout.header_line > 0
             ? layout.column_names[column]
-            : std::string(kRoleKeys[column < static_cast<int>(roles.size()) ? roles[column]
-                                                                            : kNone]);
+            : std::string(
+                  kRoleKeys[column < static_cast<int>(roles.size()) ? roles[column]
+                                                                    : kNone]);
     return fmt::format("column '{}' (index {})", name, column);
   }
 
@@ -1038,7 +1115,10 @@ struct ScannerState {
   };
   LineFailure failure;  // LogScanner's
 
-  static bool Fail(LineFailure* why, Failure kind, int column, const char* at,
+  static bool Fail(LineFailure* why,
+                   Failure kind,
+                   int column,
+                   const char* at,
                    const char* end_of_number = nullptr) {
     *why = {kind, column, at, end_of_number};
     return false;
@@ -1052,13 +1132,18 @@ struct ScannerState {
         return BadNumber(text, why.column, why.at);
       case Failure::kNonFinite:
         return fmt::format("non-finite value '{}' in {}; remove or fix the line",
-                           std::string_view(why.at, why.end - why.at), ColumnLabel(why.column));
+                           std::string_view(why.at, why.end - why.at),
+                           ColumnLabel(why.column));
       case Failure::kImpossible:
         return fmt::format(
-            "reading '{}' in {} is beyond any accelerometer's range (±{:g} {}, {:g} g): a "
+            "reading '{}' in {} is beyond any accelerometer's range (±{:g} {}, {:g} g): "
+            "a "
             "corrupt line, or readings in other units",
-            std::string_view(why.at, why.end - why.at), ColumnLabel(why.column),
-            MaxReading(options.units), ToString(options.units), kMaxReadingG);
+            std::string_view(why.at, why.end - why.at),
+            ColumnLabel(why.column),
+            MaxReading(options.units),
+            ToString(options.units),
+            kMaxReadingG);
     }
     return "";
   }
@@ -1136,13 +1221,15 @@ struct ScannerState {
         case kAy:
         case kAz:
           out->accel[role - kAx] = value;
-          out->accel_span[role - kAx] = {static_cast<std::uint32_t>(number_begin - line_begin),
-                                         static_cast<std::uint32_t>(after - line_begin)};
+          out->accel_span[role - kAx] = {
+              static_cast<std::uint32_t>(number_begin - line_begin),
+              static_cast<std::uint32_t>(after - line_begin)};
           break;
         default:
           out->gyro[role - kGx] = value;
-          out->gyro_span[role - kGx] = {static_cast<std::uint32_t>(number_begin - line_begin),
-                                        static_cast<std::uint32_t>(after - line_begin)};
+          out->gyro_span[role - kGx] = {
+              static_cast<std::uint32_t>(number_begin - line_begin),
+              static_cast<std::uint32_t>(after - line_begin)};
           break;
       }
     }
@@ -1150,19 +1237,27 @@ struct ScannerState {
   }
 
   std::string TooFew(std::string_view text, int found) const {
-    return fmt::format("expected at least {} columns separated by {} ({}), found {}: '{}'",
-                       layout.min_columns, DelimiterName(layout.delimiter), layout.Describe(),
-                       found, Printable(text, 80));
+    return fmt::format(
+        "expected at least {} columns separated by {} ({}), found {}: '{}'",
+        layout.min_columns,
+        DelimiterName(layout.delimiter),
+        layout.Describe(),
+        found,
+        Printable(text, 80));
   }
 
-  std::string BadNumber(std::string_view text, int column, const char* field_begin) const {
+  std::string BadNumber(std::string_view text,
+                        int column,
+                        const char* field_begin) const {
     const char* const stop = text.data() + text.size();
     const char* e = field_begin;
-    while (e < stop && !(layout.delimiter == ' ' ? IsBlank(*e) : *e == layout.delimiter)) ++e;
+    while (e < stop && !(layout.delimiter == ' ' ? IsBlank(*e) : *e == layout.delimiter))
+      ++e;
     const std::string_view field = Trim(std::string_view(field_begin, e - field_begin));
-    if (field.empty()) return fmt::format("{} is empty; expected a number", ColumnLabel(column));
-    return fmt::format("expected a number in {}, found '{}'", ColumnLabel(column),
-                       Printable(field));
+    if (field.empty())
+      return fmt::format("{} is empty; expected a number", ColumnLabel(column));
+    return fmt::format(
+        "expected a number in {}, found '{}'", ColumnLabel(column), Printable(field));
   }
 };
 
@@ -1170,7 +1265,9 @@ struct ScannerState {
 
 struct LogScanner::Impl : ScannerState {};
 
-LogScanner::LogScanner(const std::string& path, const LogOptions& options, bool parse_gyro)
+LogScanner::LogScanner(const std::string& path,
+                       const LogOptions& options,
+                       bool parse_gyro)
     : impl_(std::make_unique<Impl>()) {
   const std::string problem = options.Validate();
   if (!problem.empty()) throw Error("log options: " + problem);
@@ -1215,9 +1312,12 @@ bool LogScanner::Next(LogLine* line) {
     pending_line = s.line_number;
   }
   if (!pending.empty()) {
-    s.warnings.push_back(fmt::format(
-        "{}:{}: last line is incomplete ({}); ignored, as when a logger is cut off mid-write",
-        s.source, pending_line, pending));
+    s.warnings.push_back(
+        fmt::format("{}:{}: last line is incomplete ({}); ignored, as when a logger is "
+                    "cut off mid-write",
+                    s.source,
+                    pending_line,
+                    pending));
   }
   return false;
 }
@@ -1296,7 +1396,7 @@ struct Chunk {
   std::size_t lines = 0;          // lines in the chunk
   std::size_t last_row_line = 0;  // 1-based within the chunk
   std::size_t first_row_bytes = 0;
-  bool has_content = false;  // a line that is not blank (ends a pending failure)
+  bool has_content = false;      // a line that is not blank (ends a pending failure)
   std::size_t failure_line = 0;  // first malformed data line, 0 for none
   std::string failure;
   bool failure_fatal = false;  // something but blank lines follows it
@@ -1357,7 +1457,8 @@ class ChunkPipeline {
       ready_.wait(lock, [&] {
         const Chunk& next = slots_[merged_ % kChunksInFlight];
         return (next.state == Chunk::State::kParsed && next.sequence == merged_) ||
-               (input_done_ && merged_ == claimed_) || (!helper_.joinable() && !input_done_);
+               (input_done_ && merged_ == claimed_) ||
+               (!helper_.joinable() && !input_done_);
       });
     }
   }
@@ -1393,7 +1494,9 @@ class ChunkPipeline {
     Chunk* c = nullptr;
     {
       std::unique_lock lock(mutex_);
-      auto free = [&] { return slots_[claimed_ % kChunksInFlight].state == Chunk::State::kFree; };
+      auto free = [&] {
+        return slots_[claimed_ % kChunksInFlight].state == Chunk::State::kFree;
+      };
       if (wait) ready_.wait(lock, [&] { return stop_ || input_done_ || free(); });
       if (stop_ || input_done_ || !free()) return nullptr;
       c = &slots_[claimed_ % kChunksInFlight];
@@ -1435,7 +1538,8 @@ class ChunkPipeline {
         const ssize_t n = ::read(s_.fd, c->bytes.get() + size, want - size);
         if (n < 0) {
           if (errno == EINTR) continue;
-          c->read_error = fmt::format("error reading '{}': {}", s_.source, std::strerror(errno));
+          c->read_error =
+              fmt::format("error reading '{}': {}", s_.source, std::strerror(errno));
           break;
         }
         if (n == 0) {
@@ -1572,9 +1676,11 @@ std::string CounterWrapHint(double raw_time_before) {
     const double wrap = std::ldexp(1.0, bits);
     if (raw_time_before > 0.99 * wrap && raw_time_before < wrap) {
       return fmt::format(
-          " (the timestamp looks like a {}-bit counter that wrapped around at {:.0f}: unwrap "
+          " (the timestamp looks like a {}-bit counter that wrapped around at {:.0f}: "
+          "unwrap "
           "it, or leave time out of --columns and give --rate HZ)",
-          bits, wrap);
+          bits,
+          wrap);
     }
   }
   return "";
@@ -1681,8 +1787,8 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
           rec.time_s.insert(rec.time_s.end(), c->time.begin() + j, c->time.begin() + k);
           rec.accel.insert(rec.accel.end(), c->accel.begin() + j, c->accel.begin() + k);
           if (gyro) {
-            rec.gyro_radps.insert(rec.gyro_radps.end(), c->gyro.begin() + j,
-                                  c->gyro.begin() + k);
+            rec.gyro_radps.insert(
+                rec.gyro_radps.end(), c->gyro.begin() + j, c->gyro.begin() + k);
           }
           last_kept = k - 1;
         }
@@ -1695,18 +1801,23 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
           continue;
         }
         if (last_kept < rows) previous_line = line_of(last_kept);
-        throw Error(fmt::format(
-            "{}:{}: time goes back: {:.9g} s after {:.9g} s on line {}; the rows must be in "
-            "time order{}",
-            rec.source, line_of(k), t, before, previous_line,
-            CounterWrapHint(before / time_scale)));
+        throw Error(
+            fmt::format("{}:{}: time goes back: {:.9g} s after {:.9g} s on line {}; the "
+                        "rows must be in "
+                        "time order{}",
+                        rec.source,
+                        line_of(k),
+                        t,
+                        before,
+                        previous_line,
+                        CounterWrapHint(before / time_scale)));
       }
       if (last_kept < rows) previous_line = line_of(last_kept);
       rows_before += rows;
       if (c->failure_line > 0) {
         if (c->failure_fatal) {
-          throw Error(fmt::format("{}:{}: {}", rec.source, line_base + c->failure_line,
-                                  c->failure));
+          throw Error(fmt::format(
+              "{}:{}: {}", rec.source, line_base + c->failure_line, c->failure));
         }
         pending_line = line_base + c->failure_line;
         pending = c->failure;
@@ -1717,14 +1828,16 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
     line_base += c->lines;
     if (c->line_too_long) {
       throw Error(fmt::format(
-          "{}:{}: line longer than {} KiB: this does not look like a text log", rec.source,
-          line_base + 1, kMaxLineBytes / 1024));
+          "{}:{}: line longer than {} KiB: this does not look like a text log",
+          rec.source,
+          line_base + 1,
+          kMaxLineBytes / 1024));
     }
     if (!c->read_error.empty()) throw Error(c->read_error);
     pipeline.Release(c);
     if (s.options.progress && s.total > 0) {
-      const double fraction =
-          std::min(1.0, static_cast<double>(pipeline.consumed()) / static_cast<double>(s.total));
+      const double fraction = std::min(
+          1.0, static_cast<double>(pipeline.consumed()) / static_cast<double>(s.total));
       if (fraction - s.last_progress >= 0.01) {
         s.last_progress = fraction;
         s.options.progress(fraction);
@@ -1736,12 +1849,16 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
 
   rec.warnings = s.warnings;
   if (!pending.empty()) {
-    rec.warnings.push_back(fmt::format(
-        "{}:{}: last line is incomplete ({}); ignored, as when a logger is cut off mid-write",
-        rec.source, pending_line, pending));
+    rec.warnings.push_back(
+        fmt::format("{}:{}: last line is incomplete ({}); ignored, as when a logger is "
+                    "cut off mid-write",
+                    rec.source,
+                    pending_line,
+                    pending));
   }
   if (rec.empty()) {
-    throw Error(fmt::format("'{}' has no data rows{}", rec.source,
+    throw Error(fmt::format("'{}' has no data rows{}",
+                            rec.source,
                             layout.header_line > 0 ? " after its header" : ""));
   }
   // Rows are in time order: the first and last times bound them all.
@@ -1750,13 +1867,18 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
       throw Error(fmt::format(
           "{}: a time of {:.6g} s is beyond any logger's clock (more than {:g} s, 31,700 "
           "years): the time column is not a time in the unit it is read in",
-          rec.source, t, kMaxTimeS));
+          rec.source,
+          t,
+          kMaxTimeS));
     }
   }
   if (duplicates > 0) {
-    rec.warnings.push_back(fmt::format(
-        "{}: {} row{} with a duplicated timestamp dropped (first on line {})", rec.source,
-        duplicates, duplicates == 1 ? "" : "s", first_duplicate_line));
+    rec.warnings.push_back(
+        fmt::format("{}: {} row{} with a duplicated timestamp dropped (first on line {})",
+                    rec.source,
+                    duplicates,
+                    duplicates == 1 ? "" : "s",
+                    first_duplicate_line));
   }
   // Gaps: steps much longer than the typical one (from up to 10,000 steps
   // spread over the log, so that this stays cheap).
@@ -1764,7 +1886,8 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
     const std::size_t n = rec.size() - 1;
     const std::size_t stride = std::max<std::size_t>(1, n / 10000);
     std::vector<double> steps;
-    for (std::size_t i = 0; i < n; i += stride) steps.push_back(rec.time_s[i + 1] - rec.time_s[i]);
+    for (std::size_t i = 0; i < n; i += stride)
+      steps.push_back(rec.time_s[i + 1] - rec.time_s[i]);
     std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
     const double typical = steps[steps.size() / 2];
     const double limit = 5.0 * typical;
@@ -1782,10 +1905,16 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
       }
     }
     if (gaps > 0) {
-      rec.warnings.push_back(fmt::format(
-          "{}: {} gap{} in time longer than 5 sample periods ({:.4g} s); the largest is {:.4g} "
-          "s after t = {:.9g} s",
-          rec.source, gaps, gaps == 1 ? "" : "s", typical, largest, largest_at));
+      rec.warnings.push_back(
+          fmt::format("{}: {} gap{} in time longer than 5 sample periods ({:.4g} s); the "
+                      "largest is {:.4g} "
+                      "s after t = {:.9g} s",
+                      rec.source,
+                      gaps,
+                      gaps == 1 ? "" : "s",
+                      typical,
+                      largest,
+                      largest_at));
     }
   }
   return rec;

@@ -19,9 +19,7 @@ std::optional<ModelKind> ParseModelKind(std::string_view name) {
   return std::nullopt;
 }
 
-int ParameterCount(ModelKind kind) {
-  return kind == ModelKind::kShinElSheimy9 ? 9 : 6;
-}
+int ParameterCount(ModelKind kind) { return kind == ModelKind::kShinElSheimy9 ? 9 : 6; }
 
 Eigen::Matrix<double, kNumModelParameters, 1> ToVector(const ErrorModel& m) {
   Eigen::Matrix<double, kNumModelParameters, 1> v;

@@ -37,10 +37,10 @@ constexpr std::int64_t kBlockRows = 4096;
 // row. Twelve partial sums (four rows of three axes) let the compiler keep
 // them in vector registers; the axis of lane j is j mod 3.
 MPCAL_VECTOR_CLONES void SecondDifferenceSquares(const double* theta,
-                             std::int64_t k0,
-                             std::int64_t k1,
-                             std::int64_t m,
-                             long double out[3]) {
+                                                 std::int64_t k0,
+                                                 std::int64_t k1,
+                                                 std::int64_t m,
+                                                 long double out[3]) {
   const double* a = theta + 3 * k0;
   const double* b = a + 3 * m;
   const double* c = a + 6 * m;
@@ -62,10 +62,10 @@ MPCAL_VECTOR_CLONES void SecondDifferenceSquares(const double* theta,
 
 // The same over start indices 0, d, 2d, ... < k1.
 MPCAL_VECTOR_CLONES void StridedSecondDifferenceSquares(const double* theta,
-                                    std::int64_t k1,
-                                    std::int64_t m,
-                                    std::int64_t d,
-                                    long double out[3]) {
+                                                        std::int64_t k1,
+                                                        std::int64_t m,
+                                                        std::int64_t d,
+                                                        long double out[3]) {
   double acc[3] = {};
   for (std::int64_t k = 0; k < k1; k += d) {
     const double* a = theta + 3 * k;

@@ -69,9 +69,16 @@ std::string TickLabel(const Ticks& t, std::size_t i) {
 }  // namespace
 
 Ticks DecadeTicks(Interval r) {
-  static const char* const kSuperscript[] = {"\u2070", "\u00b9", "\u00b2", "\u00b3",
-                                             "\u2074", "\u2075", "\u2076", "\u2077",
-                                             "\u2078", "\u2079"};
+  static const char* const kSuperscript[] = {"\u2070",
+                                             "\u00b9",
+                                             "\u00b2",
+                                             "\u00b3",
+                                             "\u2074",
+                                             "\u2075",
+                                             "\u2076",
+                                             "\u2077",
+                                             "\u2078",
+                                             "\u2079"};
   Ticks t;
   t.step = 1.0;
   t.range = {std::floor(r.lo + 1e-9), std::ceil(r.hi - 1e-9)};

@@ -24,8 +24,10 @@ std::string BarChart(const BarChartSpec& spec) {
   legend.insert(legend.end(), spec.extra_legend.begin(), spec.extra_legend.end());
   const double plot_width = spec.width - kMargins.left - kMargins.right;
   const double legend_height = LegendHeight(legend, plot_width);
-  const PlotArea area{
-      kMargins.left, kMargins.top, plot_width, spec.height - kMargins.top - kMargins.bottom};
+  const PlotArea area{kMargins.left,
+                      kMargins.top,
+                      plot_width,
+                      spec.height - kMargins.top - kMargins.bottom};
   Svg svg(spec.width,
           spec.height + (legend_height > 0 ? legend_height + kMargins.legend_gap : 0),
           spec.aria_label);

@@ -57,7 +57,9 @@ LinePlotSpec ToLogScales(const LinePlotSpec& in) {
     a.y = one(in.log_y, a.y);
   }
   if (s.y_reference) s.y_reference = one(in.log_y, *s.y_reference);
-  if (s.y_include) s.y_include = Interval{one(in.log_y, s.y_include->lo), one(in.log_y, s.y_include->hi)};
+  if (s.y_include)
+    s.y_include =
+        Interval{one(in.log_y, s.y_include->lo), one(in.log_y, s.y_include->hi)};
   return s;
 }
 
@@ -81,8 +83,10 @@ std::string LinePlot(const LinePlotSpec& original) {
   const double plot_width = spec.width - kMargins.left - kMargins.right;
   const double legend_height = LegendHeight(legend, plot_width);
 
-  PlotArea area{
-      kMargins.left, kMargins.top, plot_width, spec.height - kMargins.top - kMargins.bottom};
+  PlotArea area{kMargins.left,
+                kMargins.top,
+                plot_width,
+                spec.height - kMargins.top - kMargins.bottom};
   Svg svg(spec.width,
           spec.height + (legend_height > 0 ? legend_height + kMargins.legend_gap : 0),
           spec.aria_label);

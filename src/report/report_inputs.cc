@@ -15,9 +15,9 @@
 #include "mpcal/calibration_file.h"
 #include "mpcal/error.h"
 #include "mpcal/json_reader.h"
-#include "mpcal/text_input.h"
 #include "mpcal/repeat.h"
 #include "mpcal/report.h"
+#include "mpcal/text_input.h"
 
 namespace mpcal {
 
@@ -49,9 +49,8 @@ std::string ReadText(const std::string& path, const char* what) {
   }
   std::string_view kind(what);
   if (kind.starts_with("a ")) kind.remove_prefix(2);
-  return ReadTextInput(path,
-                       kind.ends_with("CSV") ? kMaxReferenceFileBytes : kMaxResultFileBytes,
-                       kind);
+  return ReadTextInput(
+      path, kind.ends_with("CSV") ? kMaxReferenceFileBytes : kMaxResultFileBytes, kind);
 }
 
 std::vector<std::string> SplitCsv(const std::string& line) {

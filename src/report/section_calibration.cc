@@ -167,13 +167,12 @@ std::string CoverageFigure(const Calibration& c) {
                   "and corners (Syed et al. 2007), covered when a used position lies "
                   "within {:.0f}\u00b0.",
                   kCoverageToleranceDeg));
-  html += Paragraph(fmt::format("{} of the 26 canonical directions covered{}{}.",
-                                covered,
-                                missing.empty()
-                                    ? ""
-                                    : "; missing (named by what points down): ",
-                                fmt::join(missing, ", ")),
-                    missing.empty() ? "ok" : "");
+  html += Paragraph(
+      fmt::format("{} of the 26 canonical directions covered{}{}.",
+                  covered,
+                  missing.empty() ? "" : "; missing (named by what points down): ",
+                  fmt::join(missing, ", ")),
+      missing.empty() ? "ok" : "");
   return html;
 }
 

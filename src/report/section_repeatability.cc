@@ -65,9 +65,10 @@ std::string TrialsTable(const RepeatabilityResult& rep, bool have_sigma) {
       cells.push_back(
           fmt::format("{}{}",
                       *row.changed ? "yes" : "no",
-                      !row.p_value          ? std::string()
-                      : *row.p_value < 1e-15 ? std::string(" (p < 1e-15)")
-                                             : fmt::format(" (p = {})", Significant(*row.p_value, 2))));
+                      !row.p_value ? std::string()
+                      : *row.p_value < 1e-15
+                          ? std::string(" (p < 1e-15)")
+                          : fmt::format(" (p = {})", Significant(*row.p_value, 2))));
     }
     t.Row(cells, row.changed.value_or(false) ? "bad" : "");
   }

@@ -150,9 +150,12 @@ std::string SphereMap(const SphereMapSpec& spec) {
         const double x = cx + p.x();
         const double y = cy - p.y();
         // (left edge, baseline) candidates; the box is 9 units tall.
-        const double candidates[][2] = {{x + 5, y - 5},      {x + 5, y + 12},
-                                        {x - 5 - w, y - 5},  {x - 5 - w, y + 12},
-                                        {x + 5, y + 22},     {x - 5 - w, y + 22}};
+        const double candidates[][2] = {{x + 5, y - 5},
+                                        {x + 5, y + 12},
+                                        {x - 5 - w, y - 5},
+                                        {x - 5 - w, y + 12},
+                                        {x + 5, y + 22},
+                                        {x - 5 - w, y + 22}};
         Box box{x + 5, y - 14, x + 5 + w, y - 5};
         for (const auto& c : candidates) {
           const Box b{c[0], c[1] - 9, c[0] + w, c[1]};

@@ -63,16 +63,22 @@ DevicePreset MakePreset(const std::string& name,
 }
 
 // ω = M (reading − b): M = diag(1 + scale) + the misalignment matrix (rad).
-void SetGyro(DevicePreset& p, const Eigen::Vector3d& scale, const Eigen::Matrix3d& misalignment,
-             const Eigen::Vector3d& bias_dps, double noise_dps_per_sqrt_hz, double walk) {
+void SetGyro(DevicePreset& p,
+             const Eigen::Vector3d& scale,
+             const Eigen::Matrix3d& misalignment,
+             const Eigen::Vector3d& bias_dps,
+             double noise_dps_per_sqrt_hz,
+             double walk) {
   constexpr double kDeg = 3.14159265358979323846 / 180.0;
-  p.gyro_m = Eigen::Matrix3d::Identity() + Eigen::Matrix3d(scale.asDiagonal()) + misalignment;
+  p.gyro_m =
+      Eigen::Matrix3d::Identity() + Eigen::Matrix3d(scale.asDiagonal()) + misalignment;
   p.gyro_bias_radps = bias_dps * kDeg;
   p.gyro_noise_density_radps_per_sqrt_hz = noise_dps_per_sqrt_hz * kDeg;
   p.gyro_bias_walk_radps_per_sqrt_s = walk;
 }
 
-Eigen::Matrix3d Misalignment(double xy, double xz, double yx, double yz, double zx, double zy) {
+Eigen::Matrix3d Misalignment(
+    double xy, double xz, double yx, double yz, double zx, double zy) {
   Eigen::Matrix3d m;
   m << 0.0, xy, xz, yx, 0.0, yz, zx, zy, 0.0;
   return m;
@@ -91,8 +97,11 @@ std::vector<DevicePreset> AllPresets() {
   colibri.noise_density_mps2_per_sqrt_hz = 0.004;
   colibri.range_mps2 = 16.0 * kG;
   colibri.resolution_mps2 = 32.0 * kG / 8192.0;
-  SetGyro(colibri, {0.021, -0.016, 0.012},
-          Misalignment(0.008, -0.012, 0.010, 0.006, -0.009, 0.011), {0.9, -1.4, 0.6}, 0.03,
+  SetGyro(colibri,
+          {0.021, -0.016, 0.012},
+          Misalignment(0.008, -0.012, 0.010, 0.006, -0.009, 0.011),
+          {0.9, -1.4, 0.6},
+          0.03,
           2e-5);
   presets.push_back(colibri);
 
@@ -104,8 +113,12 @@ std::vector<DevicePreset> AllPresets() {
                                  {0.0068, 0.0095, 0.011});
   cube.rate_hz = 180.0;
   cube.noise_density_mps2_per_sqrt_hz = 0.003;
-  SetGyro(cube, {0.006, -0.004, 0.005}, Misalignment(0.004, -0.003, 0.005, 0.002, -0.004, 0.003),
-          {0.2, -0.3, 0.1}, 0.02, 1e-5);
+  SetGyro(cube,
+          {0.006, -0.004, 0.005},
+          Misalignment(0.004, -0.003, 0.005, 0.002, -0.004, 0.003),
+          {0.2, -0.3, 0.1},
+          0.02,
+          1e-5);
   presets.push_back(cube);
 
   // Table 6, trial 1.
@@ -117,8 +130,11 @@ std::vector<DevicePreset> AllPresets() {
   mtig.rate_hz = 512.0;
   mtig.noise_density_mps2_per_sqrt_hz = 0.002;
   mtig.range_mps2 = 50.0;
-  SetGyro(mtig, {0.001, -0.0008, 0.0006},
-          Misalignment(0.0017, -0.0012, 0.0009, 0.0015, -0.0011, 0.0013), {0.3, -0.5, 0.2}, 0.05,
+  SetGyro(mtig,
+          {0.001, -0.0008, 0.0006},
+          Misalignment(0.0017, -0.0012, 0.0009, 0.0015, -0.0011, 0.0013),
+          {0.3, -0.5, 0.2},
+          0.05,
           5e-6);
   presets.push_back(mtig);
   return presets;

@@ -174,7 +174,8 @@ std::string SimulateStaticOptions::Validate() const {
                   "gyro_noise_density_radps_per_sqrt_hz"},
         std::pair{dev.gyro_noise_density_radps_per_sqrt_hz,
                   "device.gyro_noise_density_radps_per_sqrt_hz"},
-        std::pair{dev.gyro_bias_walk_radps_per_sqrt_s, "device.gyro_bias_walk_radps_per_sqrt_s"},
+        std::pair{dev.gyro_bias_walk_radps_per_sqrt_s,
+                  "device.gyro_bias_walk_radps_per_sqrt_s"},
         std::pair{gyro_counts_offset, "gyro_counts_offset"},
         std::pair{gyro_counts_per_radps, "gyro_counts_per_radps"},
         std::pair{counts_offset, "counts_offset"},
@@ -417,11 +418,12 @@ SimulatedSession SimulateStatic(const SimulateStaticOptions& options,
       state_at(t - half_step_s, q0, unused);
       state_at(t + half_step_s, q1, unused);
       const Eigen::AngleAxisd delta((q0.conjugate() * q1).normalized());
-      const Eigen::Vector3d rate_radps = delta.angle() * delta.axis() / (2.0 * half_step_s) +
-                                         q_level_sensor.conjugate() * earth_level;
+      const Eigen::Vector3d rate_radps =
+          delta.angle() * delta.axis() / (2.0 * half_step_s) +
+          q_level_sensor.conjugate() * earth_level;
       session.true_rate_radps[i] = rate_radps;
-      Eigen::Vector3d g = gyro_m_inverse * rate_radps + gyro_bias +
-                          gyro_sigma * gyro_noise.Normal3();
+      Eigen::Vector3d g =
+          gyro_m_inverse * rate_radps + gyro_bias + gyro_sigma * gyro_noise.Normal3();
       if (walk_step > 0) gyro_bias += walk_step * gyro_noise.Normal3();
       if (options.gyro_units == GyroUnits::kCounts) {
         g = (Eigen::Vector3d::Constant(options.gyro_counts_offset) +
@@ -470,8 +472,8 @@ SimulatedSession SimulateStatic(const SimulateStaticOptions& options,
     gyro.bias_radps = device.gyro_bias_radps;
     if (options.gyro_units == GyroUnits::kCounts) {
       gyro.radps_per_unit = 1.0 / options.gyro_counts_per_radps;
-      gyro.bias_radps +=
-          Eigen::Vector3d::Constant(options.gyro_counts_offset / options.gyro_counts_per_radps);
+      gyro.bias_radps += Eigen::Vector3d::Constant(options.gyro_counts_offset /
+                                                   options.gyro_counts_per_radps);
     }
     truth.gyroscope = gyro;
   }

@@ -26,7 +26,8 @@ double MedianMagnitude(const Recording& recording) {
   constexpr std::size_t kStride = 16;
   std::vector<double> m;
   m.reserve(recording.size() / kStride + 1);
-  for (std::size_t i = 0; i < recording.size(); i += kStride) m.push_back(recording.accel[i].norm());
+  for (std::size_t i = 0; i < recording.size(); i += kStride)
+    m.push_back(recording.accel[i].norm());
   std::nth_element(m.begin(), m.begin() + m.size() / 2, m.end());
   return m[m.size() / 2];
 }
@@ -37,14 +38,16 @@ void CheckUnits(const Recording& recording, double gravity_mps2) {
   if (recording.empty() || recording.units == AccelUnits::kCounts) return;
   const AccelUnits units = recording.units;
   const std::string& source = recording.source;
-  const double ratio = MedianMagnitude(recording) * *FixedMps2PerUnit(units) / gravity_mps2;
+  const double ratio =
+      MedianMagnitude(recording) * *FixedMps2PerUnit(units) / gravity_mps2;
   if (ratio >= kPlausibleRestRatioLow && ratio <= kPlausibleRestRatioHigh) return;
   const double as_read = ratio * gravity_mps2 / *FixedMps2PerUnit(units);
   std::string hint = "check --units and --columns";
   const double g_if_mps2 = ratio * gravity_mps2 / kStandardGravityMps2;
   if (units == AccelUnits::kMps2 && std::abs(as_read - 1.0) < 0.5) {
     hint = "the readings look like g: add --units g";
-  } else if (units == AccelUnits::kG && std::abs(as_read / kStandardGravityMps2 - 1.0) < 0.5) {
+  } else if (units == AccelUnits::kG &&
+             std::abs(as_read / kStandardGravityMps2 - 1.0) < 0.5) {
     hint = "the readings look like m/s2: use --units mps2";
   } else if (g_if_mps2 > 20.0) {
     hint = "the readings look like raw ADC counts: add --units counts";
@@ -52,14 +55,23 @@ void CheckUnits(const Recording& recording, double gravity_mps2) {
   throw Error(fmt::format(
       "{}: the readings have a median magnitude of {:.4g} {}, but gravity is {:.5g} m/s2 "
       "({:.4g} {}); {}",
-      source, as_read, ToString(units), gravity_mps2,
-      gravity_mps2 / *FixedMps2PerUnit(units), ToString(units), hint));
+      source,
+      as_read,
+      ToString(units),
+      gravity_mps2,
+      gravity_mps2 / *FixedMps2PerUnit(units),
+      ToString(units),
+      hint));
 }
 
 std::string CalibrateOptions::Validate() const {
-  if (counts_per_g != 0.0 && !(counts_per_g >= kMinCountsPerG && counts_per_g <= kMaxCountsPerG)) {
-    return fmt::format("counts_per_g = {} is not a sensitivity ({:g} to {:g} counts per g)",
-                       counts_per_g, kMinCountsPerG, kMaxCountsPerG);
+  if (counts_per_g != 0.0 &&
+      !(counts_per_g >= kMinCountsPerG && counts_per_g <= kMaxCountsPerG)) {
+    return fmt::format(
+        "counts_per_g = {} is not a sensitivity ({:g} to {:g} counts per g)",
+        counts_per_g,
+        kMinCountsPerG,
+        kMaxCountsPerG);
   }
   if (std::string p = detect.Validate(); !p.empty()) return "detect: " + p;
   if (std::string p = solve.Validate(); !p.empty()) return "solve: " + p;
@@ -103,7 +115,9 @@ CalibrateResult CalibrateRecording(const Recording& recording,
           "{}: the {} static positions do not spread over the sphere, so the offset and "
           "scale of the raw counts cannot be found from them; record positions with each "
           "axis up and down (run 'mpcal detect {} --units counts')",
-          recording.source, intervals.size(), recording.source));
+          recording.source,
+          intervals.size(),
+          recording.source));
     }
     result.mps2_per_unit = options.counts_per_g > 0.0
                                ? kStandardGravityMps2 / options.counts_per_g
@@ -125,8 +139,8 @@ CalibrateResult CalibrateRecording(const Recording& recording,
   solve.nominal_offset_mps2 = nominal_offset_mps2;
   result.solve = Solve(result.positions, solve);
   result.warnings = result.detection.warnings;  // positions dropped for clipping
-  result.warnings.insert(result.warnings.end(), result.solve.warnings.begin(),
-                         result.solve.warnings.end());
+  result.warnings.insert(
+      result.warnings.end(), result.solve.warnings.begin(), result.solve.warnings.end());
 
   Calibration& c = result.calibration;
   c.model_kind = options.solve.model;
@@ -147,8 +161,8 @@ CalibrateResult CalibrateRecording(const Recording& recording,
   fit.converged = result.solve.converged();
   fit.variance_factor = result.solve.variance_factor;
   fit.position_scatter_mps2 = result.solve.position_scatter_mps2;
-  fit.excluded_positions =
-      static_cast<int>(std::count(result.solve.used.begin(), result.solve.used.end(), false));
+  fit.excluded_positions = static_cast<int>(
+      std::count(result.solve.used.begin(), result.solve.used.end(), false));
   fit.positions -= fit.excluded_positions;
   if (!result.solve.cross_validation_residual_mps2.empty()) {
     fit.cross_validation_rms_mps2 = result.solve.cross_validation_rms_mps2;
@@ -175,7 +189,8 @@ CalibrateResult CalibrateRecording(const Recording& recording,
 
   // The gyroscope from the turns between the same positions, with the
   // gravity directions of the accelerometer just calibrated.
-  if (options.calibrate_gyroscope && !recording.gyro_radps.empty() && result.solve.converged()) {
+  if (options.calibrate_gyroscope && !recording.gyro_radps.empty() &&
+      result.solve.converged()) {
     // The accelerometer's calibration stands without it: a gyroscope that
     // cannot be calibrated is a warning, not a failure of the whole.
     try {

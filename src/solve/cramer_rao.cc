@@ -25,7 +25,9 @@ constexpr double kSingularReciprocalCondition = 1e-12;
 // the bias are estimated besides them (columns p..p+2 of the information).
 Eigen::Matrix<double, 9, 9> Bound(const ErrorModel& truth,
                                   std::span<const BoundPosition> positions,
-                                  double gravity_mps2, ModelKind model, bool drift) {
+                                  double gravity_mps2,
+                                  ModelKind model,
+                                  bool drift) {
   const int p = ParameterCount(model);
   const int n = p + (drift ? 3 : 0);
   Eigen::MatrixXd information = Eigen::MatrixXd::Zero(n, n);
@@ -74,10 +76,12 @@ Eigen::Matrix<double, 9, 9> Bound(const ErrorModel& truth,
 
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(information);
   const Eigen::VectorXd d = ldlt.vectorD().cwiseAbs();
-  if (ldlt.info() != Eigen::Success || d.minCoeff() <= kSingularReciprocalCondition * d.maxCoeff()) {
+  if (ldlt.info() != Eigen::Success ||
+      d.minCoeff() <= kSingularReciprocalCondition * d.maxCoeff()) {
     throw Error(fmt::format(
         "Cramér-Rao bound: the {} positions do not determine the {} parameters",
-        positions.size(), p));
+        positions.size(),
+        p));
   }
   Eigen::Matrix<double, 9, 9> bound = Eigen::Matrix<double, 9, 9>::Zero();
   bound.topLeftCorner(p, p) =
@@ -89,13 +93,16 @@ Eigen::Matrix<double, 9, 9> Bound(const ErrorModel& truth,
 
 Eigen::Matrix<double, 9, 9> CramerRaoBound(const ErrorModel& truth,
                                            std::span<const BoundPosition> positions,
-                                           double gravity_mps2, ModelKind model) {
+                                           double gravity_mps2,
+                                           ModelKind model) {
   return Bound(truth, positions, gravity_mps2, model, false);
 }
 
-Eigen::Matrix<double, 9, 9> CramerRaoBoundWithDrift(const ErrorModel& truth,
-                                                    std::span<const BoundPosition> positions,
-                                                    double gravity_mps2, ModelKind model) {
+Eigen::Matrix<double, 9, 9> CramerRaoBoundWithDrift(
+    const ErrorModel& truth,
+    std::span<const BoundPosition> positions,
+    double gravity_mps2,
+    ModelKind model) {
   return Bound(truth, positions, gravity_mps2, model, true);
 }
 

@@ -76,9 +76,8 @@ Observability AnalyseObservability(const Eigen::MatrixXd& jacobian,
   // parameter uncorrelated with all the others.
   const Eigen::VectorXd norms = scaled.colwise().norm().transpose();
   const Eigen::MatrixXd normalised = scaled * norms.cwiseInverse().asDiagonal();
-  const Eigen::MatrixXd inverse = (normalised.transpose() * normalised)
-                                      .ldlt()
-                                      .solve(Eigen::MatrixXd::Identity(n, n));
+  const Eigen::MatrixXd inverse =
+      (normalised.transpose() * normalised).ldlt().solve(Eigen::MatrixXd::Identity(n, n));
   for (Eigen::Index j = 0; j < n; ++j) {
     if (inverse(j, j) > kPoorInflationFactor) {
       result.poorly_determined.push_back(names[static_cast<std::size_t>(j)]);

@@ -11,7 +11,8 @@
 namespace mpcal::internal {
 
 struct MagnitudeResidual {
-  MagnitudeResidual(const Eigen::Vector3d& mean_mps2, double gravity_mps2,
+  MagnitudeResidual(const Eigen::Vector3d& mean_mps2,
+                    double gravity_mps2,
                     double sigma_mps2)
       : mean_mps2_(mean_mps2), gravity_mps2_(gravity_mps2), sigma_mps2_(sigma_mps2) {}
 
@@ -40,13 +41,15 @@ struct MagnitudeResidual {
 /// bias"): b(t) = b + d·(t − t_ref), the position held `dt_s` = t − t_ref
 /// from the reference time (its middle).
 struct DriftMagnitudeResidual {
-  DriftMagnitudeResidual(const Eigen::Vector3d& mean_mps2, double gravity_mps2,
-                         double sigma_mps2, double dt_s)
+  DriftMagnitudeResidual(const Eigen::Vector3d& mean_mps2,
+                         double gravity_mps2,
+                         double sigma_mps2,
+                         double dt_s)
       : base_(mean_mps2, gravity_mps2, sigma_mps2), dt_s_(dt_s) {}
 
   template <typename T>
-  bool operator()(const T* bias, const T* scale, const T* angles, const T* drift,
-                  T* residual) const {
+  bool operator()(
+      const T* bias, const T* scale, const T* angles, const T* drift, T* residual) const {
     T at_position[3];
     for (int i = 0; i < 3; ++i) at_position[i] = bias[i] + drift[i] * T(dt_s_);
     return base_(at_position, scale, angles, residual);

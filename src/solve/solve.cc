@@ -76,7 +76,9 @@ struct Blocks {
 // The middle of a position, where a drifting bias is taken to act on it.
 double MidTime(const PositionObservation& p) { return 0.5 * (p.start_s + p.end_s); }
 
-double Magnitude(const ErrorModel& model, const PositionObservation& p, double gravity_mps2) {
+double Magnitude(const ErrorModel& model,
+                 const PositionObservation& p,
+                 double gravity_mps2) {
   return model.Correct(p.mean_mps2).norm() - gravity_mps2;
 }
 
@@ -160,9 +162,14 @@ class Fit {
  public:
   // With `drift_reference_s`, the bias drifts linearly in time and the
   // estimate's bias is the bias at that time.
-  Fit(const FitInput& input, const ErrorModel& start, const SolveOptions& options,
+  Fit(const FitInput& input,
+      const ErrorModel& start,
+      const SolveOptions& options,
       std::optional<double> drift_reference_s = std::nullopt)
-      : input_(input), options_(options), blocks_(start), drift_reference_s_(drift_reference_s) {}
+      : input_(input),
+        options_(options),
+        blocks_(start),
+        drift_reference_s_(drift_reference_s) {}
 
   // Two passes: the weights depend on the parameters and on the residuals, so
   // the second weighs each position at the first estimate. A robust loss, when asked
@@ -178,14 +185,16 @@ class Fit {
     const internal::Observability obs =
         internal::AnalyseObservability(Jacobian(), Names());
     if (!obs.undetermined.empty()) {
-      const bool only_angles =
-          std::all_of(obs.undetermined.begin(), obs.undetermined.end(),
-                      [](const std::string& name) { return name.starts_with("theta"); });
+      const bool only_angles = std::all_of(
+          obs.undetermined.begin(), obs.undetermined.end(), [](const std::string& name) {
+            return name.starts_with("theta");
+          });
       throw Error(fmt::format(
           "the {} static positions do not determine {}: their orientations do not span "
           "the sphere; record more positions, with each axis pointing up and down and "
           "at the cube's edges and corners (run 'mpcal detect' to see the coverage){}",
-          input_.positions.size(), fmt::join(obs.undetermined, ", "),
+          input_.positions.size(),
+          fmt::join(obs.undetermined, ", "),
           only_angles ? "; or calibrate bias and scale only with --model bias-scale-6 "
                         "(the six-position protocol)"
                       : ""));
@@ -199,7 +208,8 @@ class Fit {
     sigmas_ = Sigmas(blocks_.Model());
     own_sigmas_ = sigmas_;
     std::vector<double> residuals;
-    for (std::size_t k = 0; k < input_.positions.size(); ++k) residuals.push_back(Residual(k));
+    for (std::size_t k = 0; k < input_.positions.size(); ++k)
+      residuals.push_back(Residual(k));
     scatter_variance_ =
         internal::PositionScatterVariance(residuals, sigmas_, Leverages(Jacobian()));
     for (double& sigma : sigmas_) sigma = std::sqrt(sigma * sigma + scatter_variance_);
@@ -216,7 +226,8 @@ class Fit {
   // |a| − g of position k at the fit's estimate, or predicted by a refit
   // without it (one pass from this estimate, with the same weights).
   double Residual(std::size_t k) const {
-    return Magnitude(blocks_.ModelAt(Dt(input_.positions[k])), input_.positions[k],
+    return Magnitude(blocks_.ModelAt(Dt(input_.positions[k])),
+                     input_.positions[k],
                      options_.gravity_mps2);
   }
   double PredictedWithout(std::size_t k) const {
@@ -231,7 +242,8 @@ class Fit {
     ceres::Problem problem;
     AddResiduals(rest.positions, sigmas, options_.robust, blocks, problem);
     RunSolver(options_, problem);
-    return Magnitude(blocks.ModelAt(Dt(input_.positions[k])), input_.positions[k],
+    return Magnitude(blocks.ModelAt(Dt(input_.positions[k])),
+                     input_.positions[k],
                      options_.gravity_mps2);
   }
 
@@ -260,10 +272,11 @@ class Fit {
     const std::vector<double*> estimated = Estimated();
     const std::vector<const double*> blocks(estimated.begin(), estimated.end());
     if (!covariance.Compute(blocks, problem_.get())) {
-      throw Error(fmt::format("the covariance of the fit over {} static positions could "
-                              "not be computed: they do not determine the parameters; "
-                              "record more orientations",
-                              input_.positions.size()));
+      throw Error(
+          fmt::format("the covariance of the fit over {} static positions could "
+                      "not be computed: they do not determine the parameters; "
+                      "record more orientations",
+                      input_.positions.size()));
     }
     const int p = static_cast<int>(Names().size());
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> c(p, p);
@@ -277,7 +290,9 @@ class Fit {
     return Eigen::Vector3d(blocks_.drift[0], blocks_.drift[1], blocks_.drift[2]);
   }
   // The estimated parameters, in the order of the covariance.
-  std::vector<std::string> Names() const { return EstimatedNames(options_.model, drifts()); }
+  std::vector<std::string> Names() const {
+    return EstimatedNames(options_.model, drifts());
+  }
   /// σ of each position's residual from its sensor noise alone, without the
   /// scatter component.
   const std::vector<double>& own_sigmas() const { return own_sigmas_; }
@@ -292,30 +307,40 @@ class Fit {
     for (std::size_t k = 0; k < input_.positions.size(); ++k) {
       ErrorModel at = m;
       at.bias_mps2 += Drift() * Dt(input_.positions[k]);
-      s.push_back(internal::ResidualSigma(at, input_.positions[k].mean_mps2, input_.noise[k],
+      s.push_back(internal::ResidualSigma(at,
+                                          input_.positions[k].mean_mps2,
+                                          input_.noise[k],
                                           input_.positions[k].samples));
     }
     return s;
   }
 
   void AddResiduals(const std::vector<PositionObservation>& positions,
-                    const std::vector<double>& sigmas, RobustLoss loss, Blocks& blocks,
+                    const std::vector<double>& sigmas,
+                    RobustLoss loss,
+                    Blocks& blocks,
                     ceres::Problem& problem) const {
     for (std::size_t k = 0; k < positions.size(); ++k) {
       if (drifts()) {
-        auto* cost =
-            new ceres::AutoDiffCostFunction<internal::DriftMagnitudeResidual, 1, 3, 3, 3, 3>(
+        auto* cost = new ceres::
+            AutoDiffCostFunction<internal::DriftMagnitudeResidual, 1, 3, 3, 3, 3>(
                 new internal::DriftMagnitudeResidual(positions[k].mean_mps2,
-                                                     options_.gravity_mps2, sigmas[k],
+                                                     options_.gravity_mps2,
+                                                     sigmas[k],
                                                      Dt(positions[k])));
-        problem.AddResidualBlock(cost, MakeLoss(loss, loss_scale_), blocks.bias, blocks.scale,
-                                 blocks.angles, blocks.drift);
+        problem.AddResidualBlock(cost,
+                                 MakeLoss(loss, loss_scale_),
+                                 blocks.bias,
+                                 blocks.scale,
+                                 blocks.angles,
+                                 blocks.drift);
         continue;
       }
       auto* cost = new ceres::AutoDiffCostFunction<MagnitudeResidual, 1, 3, 3, 3>(
-          new MagnitudeResidual(positions[k].mean_mps2, options_.gravity_mps2, sigmas[k]));
-      problem.AddResidualBlock(cost, MakeLoss(loss, loss_scale_), blocks.bias, blocks.scale,
-                               blocks.angles);
+          new MagnitudeResidual(
+              positions[k].mean_mps2, options_.gravity_mps2, sigmas[k]));
+      problem.AddResidualBlock(
+          cost, MakeLoss(loss, loss_scale_), blocks.bias, blocks.scale, blocks.angles);
     }
     if (options_.model == ModelKind::kBiasScale6) {
       problem.SetParameterBlockConstant(blocks.angles);
@@ -354,7 +379,8 @@ class Fit {
 };
 
 FitInput Select(std::span<const PositionObservation> positions,
-                const std::vector<Eigen::Vector3d>& noise, const std::vector<bool>& used) {
+                const std::vector<Eigen::Vector3d>& noise,
+                const std::vector<bool>& used) {
   FitInput in;
   for (std::size_t k = 0; k < positions.size(); ++k) {
     if (!used[k]) continue;
@@ -392,7 +418,8 @@ std::vector<double> Standardised(Fit& fit, std::size_t count) {
 // The split-half check, and every 1σ widened by its rule when two halves
 // disagree beyond chance (METHOD.md §9).
 void WidenBySplitHalves(std::span<const PositionObservation> positions,
-                        const SolveOptions& options, SolveResult& result) {
+                        const SolveOptions& options,
+                        SolveResult& result) {
   result.split_half = internal::CheckSplitHalves(positions, result.used, options);
   const double widening = result.split_half->widening;
   if (!(widening > 1.0)) return;
@@ -401,13 +428,21 @@ void WidenBySplitHalves(std::span<const PositionObservation> positions,
   if (result.bias_drift) result.bias_drift->std_mps2_per_s *= widening;
   for (const SplitHalfComparison& c : result.split_half->comparisons) {
     if (!c.determined || !c.disagree) continue;
-    result.warnings.push_back(fmt::format(
-        "the two halves of the positions ({}, {} and {}) give estimates that differ beyond "
-        "their 1σ (RMS z {:.2f} over {} parameters, chi-square p = {:.2g}): something the "
-        "model does not capture (a drifting bias, a bumped stretch) is in the session; every "
-        "1σ is widened by {:.2f}",
-        c.kind == SplitKind::kByTime ? "by time" : "alternate positions", c.positions_first,
-        c.positions_second, c.rms_z, c.dof, c.p_value, widening));
+    result.warnings.push_back(
+        fmt::format("the two halves of the positions ({}, {} and {}) give estimates that "
+                    "differ beyond "
+                    "their 1σ (RMS z {:.2f} over {} parameters, chi-square p = {:.2g}): "
+                    "something the "
+                    "model does not capture (a drifting bias, a bumped stretch) is in "
+                    "the session; every "
+                    "1σ is widened by {:.2f}",
+                    c.kind == SplitKind::kByTime ? "by time" : "alternate positions",
+                    c.positions_first,
+                    c.positions_second,
+                    c.rms_z,
+                    c.dof,
+                    c.p_value,
+                    widening));
   }
 }
 
@@ -420,10 +455,13 @@ constexpr int kMinDriftRedundancy = 3;
 // three parameters, both χ² with the constant fit's weights (its noise and
 // scatter), F(3, K − p − 3), at options.bias_drift_significance. F rather
 // than a χ² test, since the weights' overall level is itself uncertain.
-void ChooseBiasDrift(const FitInput& in, const SolveOptions& options, double reference_s,
-                     std::unique_ptr<Fit>& fit, SolveResult& result) {
-  const int redundancy = static_cast<int>(in.positions.size()) -
-                         ParameterCount(options.model) - 3;
+void ChooseBiasDrift(const FitInput& in,
+                     const SolveOptions& options,
+                     double reference_s,
+                     std::unique_ptr<Fit>& fit,
+                     SolveResult& result) {
+  const int redundancy =
+      static_cast<int>(in.positions.size()) - ParameterCount(options.model) - 3;
   if (options.force_bias_drift && redundancy < 1) {
     throw Error(fmt::format("{} positions are too few for the model with a drifting bias",
                             in.positions.size()));
@@ -437,7 +475,8 @@ void ChooseBiasDrift(const FitInput& in, const SolveOptions& options, double ref
     return;  // the positions do not separate a drift from the other parameters
   }
   if (drifting->summary().termination_type != ceres::CONVERGENCE) {
-    if (options.force_bias_drift) throw Error("the fit with a drifting bias did not converge");
+    if (options.force_bias_drift)
+      throw Error("the fit with a drifting bias did not converge");
     return;
   }
   double chi2_constant = 0.0;
@@ -488,7 +527,9 @@ std::string_view ToString(SolveStatus status) {
 std::string SolveOptions::Validate() const {
   if (!IsPlausibleGravity(gravity_mps2)) {
     return fmt::format("gravity_mps2 = {} is not a gravity on Earth ({}..{} m/s2)",
-                       gravity_mps2, kMinGravityMps2, kMaxGravityMps2);
+                       gravity_mps2,
+                       kMinGravityMps2,
+                       kMaxGravityMps2);
   }
   if (max_iterations < 1) return "max_iterations must be at least 1";
   if (!(outlier_threshold > 1.0)) return "outlier_threshold must be above 1";
@@ -501,7 +542,10 @@ std::string SolveOptions::Validate() const {
 std::string SolveResult::BriefReport() const {
   return fmt::format(
       "{} after {} iterations; |a|-g RMS {:.3g} -> {:.3g} m/s2; variance factor {:.3g}",
-      ToString(status), iterations, residual_rms_before_mps2, residual_rms_after_mps2,
+      ToString(status),
+      iterations,
+      residual_rms_before_mps2,
+      residual_rms_after_mps2,
       variance_factor);
 }
 
@@ -516,14 +560,19 @@ SolveResult Solve(std::span<const PositionObservation> positions,
     throw Error(fmt::format(
         "{} static positions are too few for the {} model ({} parameters): it needs at "
         "least {}, and more than 18 spanning the sphere for reliable results{}",
-        count, ToString(options.model), p, p,
+        count,
+        ToString(options.model),
+        p,
+        p,
         options.model == ModelKind::kShinElSheimy9 && count >= 6
             ? "; with the six axis-up/axis-down positions use --model bias-scale-6"
             : ""));
   }
   for (std::size_t k = 0; k < count; ++k) {
-    if (!positions[k].mean_mps2.allFinite() || !positions[k].sample_std_mps2.allFinite()) {
-      throw Error(fmt::format("static position {} (at {:.2f} s) has a non-finite mean", k + 1,
+    if (!positions[k].mean_mps2.allFinite() ||
+        !positions[k].sample_std_mps2.allFinite()) {
+      throw Error(fmt::format("static position {} (at {:.2f} s) has a non-finite mean",
+                              k + 1,
                               positions[k].start_s));
     }
   }
@@ -533,10 +582,12 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   result.initial = InitialiseSixPosition(positions, options.gravity_mps2);
   ErrorModel nominal;
   nominal.bias_mps2 = options.nominal_offset_mps2;
-  result.residual_before_mps2 = MagnitudeResiduals(nominal, positions, options.gravity_mps2);
+  result.residual_before_mps2 =
+      MagnitudeResiduals(nominal, positions, options.gravity_mps2);
   const std::vector<Eigen::Vector3d> noise = internal::UsableNoise(positions);
 
-  auto fit = std::make_unique<Fit>(Select(positions, noise, result.used), result.initial, options);
+  auto fit = std::make_unique<Fit>(
+      Select(positions, noise, result.used), result.initial, options);
   fit->Run();
   result.iterations = fit->iterations();
 
@@ -572,8 +623,8 @@ SolveResult Solve(std::span<const PositionObservation> positions,
 
     const std::size_t k = in.index[worst];
     result.used[k] = false;
-    auto refit = std::make_unique<Fit>(Select(positions, noise, result.used),
-                                       fit->Estimate(), options);
+    auto refit = std::make_unique<Fit>(
+        Select(positions, noise, result.used), fit->Estimate(), options);
     try {
       refit->Run();
     } catch (const Error&) {
@@ -582,13 +633,20 @@ SolveResult Solve(std::span<const PositionObservation> positions,
       result.warnings.push_back(fmt::format(
           "position {} ({:.1f}-{:.1f} s) fits badly ({:.1f} times its noise) but cannot "
           "be excluded: no other position determines the same parameters",
-          k + 1, positions[k].start_s, positions[k].end_s, std::abs(z.own[worst])));
+          k + 1,
+          positions[k].start_s,
+          positions[k].end_s,
+          std::abs(z.own[worst])));
       break;
     }
-    result.warnings.push_back(fmt::format(
-        "position {} ({:.1f}-{:.1f} s) excluded as an outlier: its residual is {:.1f} times "
-        "its noise level (was the sensor bumped or not fully still?)",
-        k + 1, positions[k].start_s, positions[k].end_s, std::abs(z.own[worst])));
+    result.warnings.push_back(
+        fmt::format("position {} ({:.1f}-{:.1f} s) excluded as an outlier: its residual "
+                    "is {:.1f} times "
+                    "its noise level (was the sensor bumped or not fully still?)",
+                    k + 1,
+                    positions[k].start_s,
+                    positions[k].end_s,
+                    std::abs(z.own[worst])));
     fit = std::move(refit);
     result.iterations += fit->iterations();
     ++excluded;
@@ -607,13 +665,15 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   const double reference_s =
       options.bias_reference_time_s.value_or(mean_time_s / std::max(used_count, 1));
   if (options.consider_bias_drift || options.force_bias_drift) {
-    ChooseBiasDrift(Select(positions, noise, result.used), options, reference_s, fit, result);
+    ChooseBiasDrift(
+        Select(positions, noise, result.used), options, reference_s, fit, result);
   }
 
   result.estimate = fit->Estimate();
   result.position_scatter_mps2 = std::sqrt(fit->scatter_variance());
   result.final_cost = fit->summary().final_cost;
-  result.residual_after_mps2 = MagnitudeResiduals(result.estimate, positions, options.gravity_mps2);
+  result.residual_after_mps2 =
+      MagnitudeResiduals(result.estimate, positions, options.gravity_mps2);
   if (fit->drifts()) {
     for (std::size_t k = 0; k < count; ++k) {
       ErrorModel at = result.estimate;
@@ -625,8 +685,10 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   result.residual_rms_after_mps2 = Rms(result.residual_after_mps2, result.used);
 
   const bool plausible =
-      result.estimate.scale_factor_error.cwiseAbs().maxCoeff() < kMaxPlausibleScaleError &&
-      std::max({std::abs(result.estimate.theta_yz_rad), std::abs(result.estimate.theta_zx_rad),
+      result.estimate.scale_factor_error.cwiseAbs().maxCoeff() <
+          kMaxPlausibleScaleError &&
+      std::max({std::abs(result.estimate.theta_yz_rad),
+                std::abs(result.estimate.theta_zx_rad),
                 std::abs(result.estimate.theta_zy_rad)}) < kMaxPlausibleAngleRad &&
       ToVector(result.estimate).allFinite();
   if (fit->summary().termination_type != ceres::CONVERGENCE || !plausible) {
@@ -653,9 +715,11 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   if (dof == 0) {
     result.warnings.push_back(fmt::format(
         "{} positions for {} parameters leave no redundancy: the residuals are zero by "
-        "construction and cannot reveal a bad position; the 1σ come from the sensor noise "
+        "construction and cannot reveal a bad position; the 1σ come from the sensor "
+        "noise "
         "alone. Record a few more positions (edges, corners) to check the fit",
-        count, p));
+        count,
+        p));
   }
 
   // Cross-validation: each used position predicted by the fit without it;
@@ -663,7 +727,8 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   const FitInput in = Select(positions, noise, result.used);
   const std::vector<double> z = Standardised(*fit, in.positions.size());
   result.standardised_residual.assign(count, 0.0);
-  for (std::size_t j = 0; j < in.index.size(); ++j) result.standardised_residual[in.index[j]] = z[j];
+  for (std::size_t j = 0; j < in.index.size(); ++j)
+    result.standardised_residual[in.index[j]] = z[j];
   // A position that alone determines some parameter (the only one with +x
   // up, say) cannot be predicted without it: NaN, not a made-up number.
   if (options.cross_validate && dof > 0) {
@@ -677,10 +742,12 @@ SolveResult Solve(std::span<const PositionObservation> positions,
       const bool determined =
           internal::AnalyseObservability(without, fit->Names()).undetermined.empty();
       result.cross_validation_residual_mps2[in.index[j]] =
-          determined ? fit->PredictedWithout(j) : std::numeric_limits<double>::quiet_NaN();
+          determined ? fit->PredictedWithout(j)
+                     : std::numeric_limits<double>::quiet_NaN();
       predicted[in.index[j]] = determined;
     }
-    result.cross_validation_rms_mps2 = Rms(result.cross_validation_residual_mps2, predicted);
+    result.cross_validation_rms_mps2 =
+        Rms(result.cross_validation_residual_mps2, predicted);
   }
 
   // Covariance: (JᵀJ)⁻¹ of the whitened problem, scaled up by the
@@ -702,7 +769,8 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   result.variance_factor = dof > 0 ? chi2 / dof : 1.0;
   constexpr double kPriorDof = 10.0;
   const double covariance_scale = (kPriorDof + chi2) / (kPriorDof + dof);
-  const Eigen::MatrixXd covariance = std::max(1.0, covariance_scale) * fit->UnscaledCovariance();
+  const Eigen::MatrixXd covariance =
+      std::max(1.0, covariance_scale) * fit->UnscaledCovariance();
   result.covariance.topLeftCorner(p, p) = covariance.topLeftCorner(p, p);
   result.std = FromVector(result.covariance.diagonal().cwiseMax(0.0).cwiseSqrt());
   if (fit->drifts()) {

@@ -32,16 +32,18 @@ std::vector<Eigen::Vector3d> UsableNoise(std::span<const PositionObservation> po
   return noise;
 }
 
-double ResidualSigma(const ErrorModel& model, const Eigen::Vector3d& mean_mps2,
-                     const Eigen::Vector3d& noise_mps2, std::size_t samples) {
+double ResidualSigma(const ErrorModel& model,
+                     const Eigen::Vector3d& mean_mps2,
+                     const Eigen::Vector3d& noise_mps2,
+                     std::size_t samples) {
   // ∇_Y |a| = (a/|a|)ᵀ T diag(1/(1+s)).
   const Eigen::Vector3d a = model.Correct(mean_mps2);
   const Eigen::RowVector3d gradient =
       (a.normalized().transpose() * model.NonOrthogonality())
-          .cwiseQuotient((Eigen::Vector3d::Ones() + model.scale_factor_error).transpose());
-  const double variance =
-      gradient.cwiseProduct(noise_mps2.transpose()).squaredNorm() /
-      static_cast<double>(std::max<std::size_t>(samples, 1));
+          .cwiseQuotient(
+              (Eigen::Vector3d::Ones() + model.scale_factor_error).transpose());
+  const double variance = gradient.cwiseProduct(noise_mps2.transpose()).squaredNorm() /
+                          static_cast<double>(std::max<std::size_t>(samples, 1));
   return std::sqrt(variance);
 }
 
@@ -129,7 +131,8 @@ double PositionScatterVariance(const std::vector<double>& residuals_mps2,
     std::nth_element(q.begin(), q.begin() + count / 2, q.end());
     return q[count / 2];
   };
-  if (median_ratio(0.0) <= ChiSquare1MedianQuantile(count, kScatterSignificance)) return 0.0;
+  if (median_ratio(0.0) <= ChiSquare1MedianQuantile(count, kScatterSignificance))
+    return 0.0;
   // Both ratios fall monotonically with τ²: bisect between 0 and the
   // largest squared residual over the target, which brings every ratio, and
   // so their median and mean, below the target.

@@ -21,8 +21,10 @@ std::vector<Eigen::Vector3d> UsableNoise(std::span<const PositionObservation> po
 
 /// σ of |a| − g at `model` for a mean reading with per-axis noise
 /// `noise_mps2` over `samples` samples (m/s²).
-double ResidualSigma(const ErrorModel& model, const Eigen::Vector3d& mean_mps2,
-                     const Eigen::Vector3d& noise_mps2, std::size_t samples);
+double ResidualSigma(const ErrorModel& model,
+                     const Eigen::Vector3d& mean_mps2,
+                     const Eigen::Vector3d& noise_mps2,
+                     std::size_t samples);
 
 /// Median of the χ² distribution with one degree of freedom.
 inline constexpr double kChiSquare1Median = 0.454936;

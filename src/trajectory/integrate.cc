@@ -96,7 +96,8 @@ std::string StillOptions::Validate() const {
 std::string IntegrateOptions::Validate() const {
   if (!IsPlausibleGravity(gravity_mps2)) {
     return fmt::format("gravity_mps2 must be a gravity magnitude in m/s2 ({}..{})",
-                       kMinGravityMps2, kMaxGravityMps2);
+                       kMinGravityMps2,
+                       kMaxGravityMps2);
   }
   if (!(min_initial_rest_s >= 0.0)) return "min_initial_rest_s must be >= 0";
   return "";

@@ -21,10 +21,10 @@
 namespace mpcal {
 namespace {
 
-using ::testing::AllOf;
-using ::testing::HasSubstr;
 using mpcal::testing::ReadFile;
 using mpcal::testing::ScratchDir;
+using ::testing::AllOf;
+using ::testing::HasSubstr;
 
 constexpr double kGravity = 9.80665;
 // Per-axis white noise of the synthetic log (m/s²), and how many sigmas a
@@ -49,9 +49,16 @@ Calibration ConsumerCalibration(AccelUnits units, double mps2_per_unit) {
 }
 
 std::vector<Eigen::Vector3d> Directions() {
-  std::vector<Eigen::Vector3d> d = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},  {0, -1, 0},
-                                    {0, 0, 1},  {0, 0, -1}, {1, 1, 0},  {0, 1, -1},
-                                    {1, -1, 1}, {-1, 1, 1}};
+  std::vector<Eigen::Vector3d> d = {{1, 0, 0},
+                                    {-1, 0, 0},
+                                    {0, 1, 0},
+                                    {0, -1, 0},
+                                    {0, 0, 1},
+                                    {0, 0, -1},
+                                    {1, 1, 0},
+                                    {0, 1, -1},
+                                    {1, -1, 1},
+                                    {-1, 1, 1}};
   for (auto& v : d) v.normalize();
   return d;
 }
@@ -65,7 +72,9 @@ struct SyntheticLog {
 // A log as a logger with extra columns writes it: comments, a header,
 // a temperature column between time and the axes, a status column at the end,
 // `rows_per_position` still rows per direction with turns between them.
-SyntheticLog MakeLog(const Calibration& truth, double out_per_mps2, int rows_per_position,
+SyntheticLog MakeLog(const Calibration& truth,
+                     double out_per_mps2,
+                     int rows_per_position,
                      const std::string& eol = "\n") {
   std::mt19937_64 rng(42);
   std::normal_distribution<double> noise(0.0, kNoiseMps2);
@@ -80,17 +89,25 @@ SyntheticLog MakeLog(const Calibration& truth, double out_per_mps2, int rows_per
       Eigen::Vector3d y = truth.model.Forward(kGravity * dirs[p]);
       for (int i = 0; i < 3; ++i) y[i] += noise(rng);
       y *= out_per_mps2;
-      log.text += fmt::format("{:.2f},{:.1f},{:.9g},{:.9g},{:.9g},OK{}", row * 0.01,
-                              21.0 + 0.1 * (row % 7), y.x(), y.y(), y.z(), eol);
+      log.text += fmt::format("{:.2f},{:.1f},{:.9g},{:.9g},{:.9g},OK{}",
+                              row * 0.01,
+                              21.0 + 0.1 * (row % 7),
+                              y.x(),
+                              y.y(),
+                              y.z(),
+                              eol);
     }
     log.still_rows.push_back({first, row});
     if (p + 1 < dirs.size()) {
       log.text += "# turn" + eol;
       // A hand turn: large accelerations, not at rest.
       for (int k = 0; k < 20; ++k, ++row) {
-        log.text += fmt::format("{:.2f},21.0,{:.9g},{:.9g},{:.9g},MOVING{}", row * 0.01,
-                                out_per_mps2 * 3.0 * std::sin(k), out_per_mps2 * 8.0,
-                                out_per_mps2 * -5.0 * std::cos(k), eol);
+        log.text += fmt::format("{:.2f},21.0,{:.9g},{:.9g},{:.9g},MOVING{}",
+                                row * 0.01,
+                                out_per_mps2 * 3.0 * std::sin(k),
+                                out_per_mps2 * 8.0,
+                                out_per_mps2 * -5.0 * std::cos(k),
+                                eol);
       }
     }
   }
@@ -114,8 +131,10 @@ std::vector<std::string> Fields(const std::string& line, char delimiter) {
   return fields;
 }
 
-std::string ApplyError(const Calibration& calibration, const std::string& input,
-                       const std::string& output, const ApplyOptions& options) {
+std::string ApplyError(const Calibration& calibration,
+                       const std::string& input,
+                       const std::string& output,
+                       const ApplyOptions& options) {
   try {
     ApplyCalibration(calibration, input, output, options);
   } catch (const Error& e) {
@@ -127,7 +146,8 @@ std::string ApplyError(const Calibration& calibration, const std::string& input,
 
 TEST(Corrector, EqualsCalibrationCorrect) {
   for (AccelUnits units : {AccelUnits::kMps2, AccelUnits::kG, AccelUnits::kCounts}) {
-    const double k = units == AccelUnits::kCounts ? 1.0 / 4096.0 : *FixedMps2PerUnit(units);
+    const double k =
+        units == AccelUnits::kCounts ? 1.0 / 4096.0 : *FixedMps2PerUnit(units);
     const Calibration c = ConsumerCalibration(units, k);
     const Corrector mps2(c, units, AccelUnits::kMps2);
     const Corrector g(c, units, AccelUnits::kG);
@@ -135,7 +155,8 @@ TEST(Corrector, EqualsCalibrationCorrect) {
       const Eigen::Vector3d reading = c.model.Forward(kGravity * d) / k;
       const Eigen::Vector3d expected = c.Correct(reading);
       EXPECT_LE((mps2(reading) - expected).norm(), kFoldedRelative * expected.norm());
-      EXPECT_LE((g(reading) * kGravity - expected).norm(), kFoldedRelative * expected.norm());
+      EXPECT_LE((g(reading) * kGravity - expected).norm(),
+                kFoldedRelative * expected.norm());
       EXPECT_NEAR(expected.norm(), kGravity, 1e-12);
     }
   }
@@ -157,8 +178,9 @@ TEST(CheckCalibrationApplies, CountsOnlyWithCounts) {
     CheckCalibrationApplies(counts, AccelUnits::kG);
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
-    EXPECT_THAT(e.what(), AllOf(HasSubstr("raw counts"), HasSubstr("'g'"),
-                                HasSubstr("--units counts")));
+    EXPECT_THAT(
+        e.what(),
+        AllOf(HasSubstr("raw counts"), HasSubstr("'g'"), HasSubstr("--units counts")));
   }
   const Calibration mps2 = ConsumerCalibration(AccelUnits::kMps2, 1.0);
   EXPECT_THROW(CheckCalibrationApplies(mps2, AccelUnits::kCounts), Error);
@@ -191,7 +213,8 @@ TEST(ApplyCalibration, StillRowsGetGravitysMagnitudeBack) {
     }
     raw_misses_sq += std::pow(mean_raw.norm() - kGravity, 2) / log.still_rows.size();
     // The corrected means hit g to the noise of a mean.
-    EXPECT_NEAR(mean_out.norm(), kGravity, kSigmas * kNoiseMps2 / std::sqrt(last - first));
+    EXPECT_NEAR(
+        mean_out.norm(), kGravity, kSigmas * kNoiseMps2 / std::sqrt(last - first));
   }
   // ... where the raw ones miss it by the sensor's errors (0.2 m/s² here).
   EXPECT_GT(std::sqrt(raw_misses_sq), 0.05);
@@ -208,7 +231,9 @@ TEST(ApplyCalibration, KeepsEverythingButTheAccelerometerNumbers) {
     // Same line ends, as many of them.
     const auto count = [&](const std::string& s) {
       std::size_t n = 0;
-      for (std::size_t p = s.find(eol); p != std::string::npos; p = s.find(eol, p + eol.size())) ++n;
+      for (std::size_t p = s.find(eol); p != std::string::npos;
+           p = s.find(eol, p + eol.size()))
+        ++n;
       return n;
     };
     EXPECT_EQ(count(out_text), count(log.text));
@@ -238,8 +263,8 @@ TEST(ApplyCalibration, WritesShortestRoundTripNumbers) {
   const std::string in = dir.Write("in.csv", "t,ax,ay,az\n0.5,0.3,-0.2,9.9\n");
   ApplyCalibration(truth, in, dir.Path("out.csv"), {});
   const auto fields = Fields(Lines(ReadFile(dir.Path("out.csv")))[1], ',');
-  const Eigen::Vector3d expected = Corrector(truth, AccelUnits::kMps2, AccelUnits::kMps2)(
-      Eigen::Vector3d(0.3, -0.2, 9.9));
+  const Eigen::Vector3d expected = Corrector(
+      truth, AccelUnits::kMps2, AccelUnits::kMps2)(Eigen::Vector3d(0.3, -0.2, 9.9));
   for (int i = 0; i < 3; ++i) {
     char shortest[32];
     const auto r = std::to_chars(shortest, shortest + 32, expected[i]);
@@ -280,7 +305,8 @@ TEST(ApplyCalibration, WarnsWhenTheMagnitudeAtRestIsNotGravity) {
   const std::string in = dir.Write("in.csv", log.text);
   const ApplyResult result = ApplyCalibration(truth, in, dir.Path("out.csv"), {});
   ASSERT_EQ(result.warnings.size(), 1u);
-  EXPECT_THAT(result.warnings[0], AllOf(HasSubstr("magnitude at rest"), HasSubstr("--units g")));
+  EXPECT_THAT(result.warnings[0],
+              AllOf(HasSubstr("magnitude at rest"), HasSubstr("--units g")));
   // Read with the right units the same log is fine.
   ApplyOptions in_g;
   in_g.log.units = AccelUnits::kG;
@@ -293,7 +319,8 @@ TEST(ApplyCalibration, RefusesMismatchedUnitsBeforeWritingAnything) {
   const std::string in = dir.Write("in.csv", "t,ax,ay,az\n0,0,0,1\n");
   ApplyOptions options;
   options.log.units = AccelUnits::kG;
-  EXPECT_THAT(ApplyError(counts, in, dir.Path("out.csv"), options), HasSubstr("raw counts"));
+  EXPECT_THAT(ApplyError(counts, in, dir.Path("out.csv"), options),
+              HasSubstr("raw counts"));
   EXPECT_FALSE(std::filesystem::exists(dir.Path("out.csv")));
 }
 
@@ -307,17 +334,21 @@ TEST(ApplyCalibration, RefusesToOverwriteItsInput) {
 
 TEST(ApplyCalibration, MalformedLineLeavesNoOutput) {
   ScratchDir dir;
-  const std::string in = dir.Write("in.csv", "t,ax,ay,az\n0,0,0,9.8\n0.1,0,x,9.8\n0.2,0,0,9.8\n");
-  EXPECT_THAT(ApplyError(ConsumerCalibration(AccelUnits::kMps2, 1.0), in, dir.Path("out.csv"), {}),
-              AllOf(HasSubstr("in.csv:3"), HasSubstr("'x'")));
+  const std::string in =
+      dir.Write("in.csv", "t,ax,ay,az\n0,0,0,9.8\n0.1,0,x,9.8\n0.2,0,0,9.8\n");
+  EXPECT_THAT(
+      ApplyError(
+          ConsumerCalibration(AccelUnits::kMps2, 1.0), in, dir.Path("out.csv"), {}),
+      AllOf(HasSubstr("in.csv:3"), HasSubstr("'x'")));
   EXPECT_FALSE(std::filesystem::exists(dir.Path("out.csv")));
 }
 
 TEST(ApplyCalibration, TruncatedLastLineDroppedWithWarning) {
   ScratchDir dir;
-  const std::string in = dir.Write("in.csv", "t,ax,ay,az\n0,0,0,9.8\n0.1,0,0,9.8\n0.2,0,");
-  const ApplyResult r =
-      ApplyCalibration(ConsumerCalibration(AccelUnits::kMps2, 1.0), in, dir.Path("out.csv"), {});
+  const std::string in =
+      dir.Write("in.csv", "t,ax,ay,az\n0,0,0,9.8\n0.1,0,0,9.8\n0.2,0,");
+  const ApplyResult r = ApplyCalibration(
+      ConsumerCalibration(AccelUnits::kMps2, 1.0), in, dir.Path("out.csv"), {});
   EXPECT_EQ(r.data_rows, 2u);
   EXPECT_EQ(Lines(ReadFile(dir.Path("out.csv"))).size(), 3u);
   EXPECT_THAT(r.warnings.front(), HasSubstr("incomplete"));
@@ -352,7 +383,8 @@ TEST(ApplyCalibration, TruthOfASimulatedSessionGivesGravityAtEveryPosition) {
   apply.log.units = session.recording.units;
   const ApplyResult result = ApplyCalibration(ReadCalibrationFile(dir.Path("truth.json")),
                                               dir.Path("session.csv"),
-                                              dir.Path("corrected.csv"), apply);
+                                              dir.Path("corrected.csv"),
+                                              apply);
   EXPECT_TRUE(result.warnings.empty()) << result.warnings.front();
   const Recording out = ReadLog(dir.Path("corrected.csv"), {});
   ASSERT_EQ(out.size(), session.recording.size());
@@ -365,7 +397,8 @@ TEST(ApplyCalibration, TruthOfASimulatedSessionGivesGravityAtEveryPosition) {
     for (std::size_t i = begin; i < end; ++i) mean += out.accel[i];
     mean /= static_cast<double>(end - begin);
     // Quantisation of the preset adds at most resolution/√12 per axis.
-    const double noise = std::hypot(sigma, options.device.resolution_mps2 / std::sqrt(12.0));
+    const double noise =
+        std::hypot(sigma, options.device.resolution_mps2 / std::sqrt(12.0));
     EXPECT_NEAR(mean.norm(), kGravity, kSigmas * noise / std::sqrt(end - begin))
         << "position at sample " << begin;
   }

@@ -101,7 +101,8 @@ TEST(Clipping, RangeBelowOneGDropsThePositionsAtTheLimitAndNamesTheirTimes) {
   // In time order: the six faces come first.
   for (int k = 0; k < 6; ++k) {
     EXPECT_GE(WarnedStartS(r.warnings[k]), s.position_start_s[k] - 0.05) << r.warnings[k];
-    EXPECT_LT(WarnedStartS(r.warnings[k]), s.position_start_s[k] + kDwellS) << r.warnings[k];
+    EXPECT_LT(WarnedStartS(r.warnings[k]), s.position_start_s[k] + kDwellS)
+        << r.warnings[k];
   }
   EXPECT_GT(r.clipped_samples, 6u * static_cast<std::size_t>(kDwellS * kRateHz) / 2);
 }
@@ -133,7 +134,8 @@ TEST(Clipping, ALimitFoundFromTheDataDropsAPositionPinnedAtIt) {
   ASSERT_EQ(r.warnings.size(), 1u);
   EXPECT_THAT(r.warnings[0], HasSubstr("z >= 19.6133"));
   EXPECT_GE(WarnedStartS(r.warnings[0]), s.position_start_s[4] - 0.05) << r.warnings[0];
-  EXPECT_LT(WarnedStartS(r.warnings[0]), s.position_start_s[4] + kDwellS) << r.warnings[0];
+  EXPECT_LT(WarnedStartS(r.warnings[0]), s.position_start_s[4] + kDwellS)
+      << r.warnings[0];
   for (const StaticInterval& iv : r.intervals) EXPECT_LT(iv.mean.z(), 0.99 * limit);
 }
 
@@ -150,7 +152,8 @@ TEST(Clipping, QuantisedStillReadingsAtOneGAreNotClipping) {
 }
 
 TEST(Clipping, AllPositionsClippedGivesAMessageThatSaysSo) {
-  const Session s = Make({Eigen::Vector3d::UnitZ(), -Eigen::Vector3d::UnitZ()}, 1.0,
+  const Session s = Make({Eigen::Vector3d::UnitZ(), -Eigen::Vector3d::UnitZ()},
+                         1.0,
                          [](const Eigen::Vector3d& y) { return Clip(y, 9.0); });
   DetectOptions options;
   options.range_mps2 = 9.0;

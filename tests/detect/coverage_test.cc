@@ -185,13 +185,15 @@ TEST(AssessCoverage, SaysToHoldLongerWhenPositionsWereDroppedAsTooShort) {
   det.dropped_short = 20;
   const CoverageResult r = AssessCoverage(det, {});
   EXPECT_EQ(r.verdict, CoverageVerdict::kNotEnough);
-  EXPECT_THAT(r.summary,
-              HasSubstr("session has 4 static positions, the 9-parameter model needs at "
-                        "least 10: 20 still stretches shorter than the minimum "
-                        "(--min-static) were dropped: hold each position longer; record"));
+  EXPECT_THAT(
+      r.summary,
+      HasSubstr("session has 4 static positions, the 9-parameter model needs at "
+                "least 10: 20 still stretches shorter than the minimum "
+                "(--min-static) were dropped: hold each position longer; record"));
   // Fewer dropped than kept: stray pauses, not the way the session was held.
   det.dropped_short = 3;
-  EXPECT_THAT(AssessCoverage(det, {}).summary, Not(HasSubstr("hold each position longer")));
+  EXPECT_THAT(AssessCoverage(det, {}).summary,
+              Not(HasSubstr("hold each position longer")));
 }
 
 TEST(AssessCoverage, NamesTheFacesNeverDown) {

@@ -264,9 +264,11 @@ TEST(DetectStatic, WarnsWhenEvenTheQuietestStretchesMoveMoreThanAStillSensor) {
   const DetectResult r = DetectStatic(m.recording, raised);
   ASSERT_FALSE(r.intervals.empty());
   ASSERT_EQ(r.warnings.size(), 1u);
-  EXPECT_THAT(r.warnings[0], HasSubstr("more than a MEMS accelerometer held still shows"));
+  EXPECT_THAT(r.warnings[0],
+              HasSubstr("more than a MEMS accelerometer held still shows"));
   // The same session with a quiet sensor: no warning.
-  EXPECT_TRUE(DetectStatic(Maker{}.Make(CubeFaces(6.0)).recording, raised).warnings.empty());
+  EXPECT_TRUE(
+      DetectStatic(Maker{}.Make(CubeFaces(6.0)).recording, raised).warnings.empty());
 }
 
 TEST(DetectStatic, KeepsApartNearbyOrientationsAfterAQuickTurn) {

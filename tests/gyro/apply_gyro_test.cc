@@ -19,7 +19,8 @@ namespace {
 
 // RMS over the turn samples (not the still parts) of corrected − true rate,
 // per axis, over the per-sample noise after M.
-double TurnErrorOverNoise(const SimulatedSession& s, const Recording& corrected,
+double TurnErrorOverNoise(const SimulatedSession& s,
+                          const Recording& corrected,
                           double out_per_radps) {
   const GyroCalibration& truth = *s.truth.gyroscope;
   double sum = 0.0;
@@ -29,7 +30,8 @@ double TurnErrorOverNoise(const SimulatedSession& s, const Recording& corrected,
   for (std::size_t i = 0; i < s.recording.size(); ++i) {
     while (k < s.still_ranges.size() && i >= s.still_ranges[k].second) ++k;
     const bool still = k < s.still_ranges.size() && i >= s.still_ranges[k].first;
-    if (still || i < s.still_ranges.front().first - static_cast<std::size_t>(2 * s.rate_hz)) {
+    if (still ||
+        i < s.still_ranges.front().first - static_cast<std::size_t>(2 * s.rate_hz)) {
       continue;
     }
     sum += (corrected.gyro_radps[i] / out_per_radps - s.true_rate_radps[i]).squaredNorm();
@@ -63,7 +65,8 @@ TEST(ApplyGyroscope, TruthFileReturnsTheTrueRateAlongEveryTurn) {
             std::string::npos);
 
   ApplyOptions options;
-  const ApplyResult r = ApplyCalibration(truth, dir.Path("s.csv"), dir.Path("out.csv"), options);
+  const ApplyResult r =
+      ApplyCalibration(truth, dir.Path("s.csv"), dir.Path("out.csv"), options);
   EXPECT_TRUE(r.gyro_corrected);
   const Recording out = ReadLog(dir.Path("out.csv"), {});
   ASSERT_EQ(out.gyro_radps.size(), s.recording.size());
@@ -86,13 +89,15 @@ TEST(ApplyGyroscope, RawCountsComeOutInRadPerSecond) {
   const Calibration truth = ReadCalibrationFile(dir.Path("truth.json"));
   ApplyOptions options;
   options.log.gyro_in_counts = true;
-  const ApplyResult r = ApplyCalibration(truth, dir.Path("s.csv"), dir.Path("out.csv"), options);
+  const ApplyResult r =
+      ApplyCalibration(truth, dir.Path("s.csv"), dir.Path("out.csv"), options);
   EXPECT_EQ(r.out_gyro_units, GyroUnits::kRadps);
   const Recording out = ReadLog(dir.Path("out.csv"), {});
   EXPECT_NEAR(TurnErrorOverNoise(s, out, 1.0), 1.0, 0.05);
   // A counts calibration refuses a log read in rad/s.
   options.log.gyro_in_counts = false;
-  EXPECT_THROW(ApplyCalibration(truth, dir.Path("s.csv"), dir.Path("bad.csv"), options), Error);
+  EXPECT_THROW(ApplyCalibration(truth, dir.Path("s.csv"), dir.Path("bad.csv"), options),
+               Error);
 }
 
 TEST(ImuFile, RoundTripsTheGyroscopeAndStillReadsAccelerometerFiles) {

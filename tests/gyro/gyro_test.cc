@@ -41,15 +41,19 @@ Fitted Fit(const SimulateStaticOptions& options) {
   Fitted f;
   f.session = SimulateStatic(options);
   f.detection = DetectStatic(f.session.recording, {});
-  f.gyro = CalibrateGyroscope(f.session.recording, f.detection.intervals, f.session.truth, {});
+  f.gyro =
+      CalibrateGyroscope(f.session.recording, f.detection.intervals, f.session.truth, {});
   return f;
 }
 
 TEST(GyroRotation, AnalyticJacobianMatchesAutomaticDifferentiation) {
   std::vector<internal::TurnStep> increments;
   for (int i = 0; i < 200; ++i) {
-    increments.push_back({Eigen::Vector3d(0.01 * std::sin(0.05 * i), 0.012 * std::cos(0.03 * i), 0.004),
-                          Eigen::Vector3d(0.01 * std::sin(0.05 * i + 0.05), 0.012 * std::cos(0.03 * i + 0.03), -0.002)});
+    increments.push_back(
+        {Eigen::Vector3d(0.01 * std::sin(0.05 * i), 0.012 * std::cos(0.03 * i), 0.004),
+         Eigen::Vector3d(0.01 * std::sin(0.05 * i + 0.05),
+                         0.012 * std::cos(0.03 * i + 0.03),
+                         -0.002)});
   }
   Eigen::Matrix3d m;
   m << 1.03, 0.01, -0.02, 0.015, 0.97, 0.03, -0.01, 0.02, 1.01;
@@ -59,7 +63,8 @@ TEST(GyroRotation, AnalyticJacobianMatchesAutomaticDifferentiation) {
   using Jet = ceres::Jet<double, 9>;
   Jet mj[9];
   for (int i = 0; i < 9; ++i) mj[i] = Jet(m(i / 3, i % 3), i);
-  const Eigen::Matrix<Jet, 3, 3> rj = internal::RotationOverTurn<Jet>(mj, std::span<const internal::TurnStep>(increments));
+  const Eigen::Matrix<Jet, 3, 3> rj = internal::RotationOverTurn<Jet>(
+      mj, std::span<const internal::TurnStep>(increments));
   for (int a = 0; a < 3; ++a) {
     for (int b = 0; b < 3; ++b) EXPECT_NEAR(rj(a, b).a, r(a, b), 1e-12);
   }
@@ -79,8 +84,8 @@ TEST(GyroTurns, TrueModelCarriesGravityAtNoiseLevelAndIdentityDoesNot) {
   const SimulatedSession s = SimulateStatic(GyroSession(11));
   const DetectResult d = DetectStatic(s.recording, {});
   ASSERT_GE(d.intervals.size(), 20u);
-  const internal::TurnProblem p =
-      internal::BuildTurnProblem(s.recording, d.intervals, s.truth, 1.0, GSensitivity::kOff, 5.0, 1.0);
+  const internal::TurnProblem p = internal::BuildTurnProblem(
+      s.recording, d.intervals, s.truth, 1.0, GSensitivity::kOff, 5.0, 1.0);
   double truth_z2 = 0.0;
   double identity_rms = 0.0;
   for (const internal::TurnData& t : p.turns) {

@@ -21,7 +21,8 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 Recording XsensImu() {
   LogOptions options;
   options.units = AccelUnits::kCounts;
-  Recording r = ReadLog(testing::RealDataPath("xsens-multiposition/xsens_acc.mat"), options);
+  Recording r =
+      ReadLog(testing::RealDataPath("xsens-multiposition/xsens_acc.mat"), options);
   const Recording g =
       ReadLog(testing::RealDataPath("xsens-multiposition/xsens_gyro.mat"), options);
   MergeGyroLog(r, g, GyroUnits::kCounts);
@@ -68,8 +69,10 @@ TEST(XsensGyroscope, WithoutGSensitivityTheBiasLeaksIntoTheTurns) {
 TEST(XsensGyroscope, RowsOfTheTwoFilesMustMatch) {
   LogOptions options;
   options.units = AccelUnits::kCounts;
-  Recording r = ReadLog(testing::RealDataPath("xsens-multiposition/xsens_acc.mat"), options);
-  Recording g = ReadLog(testing::RealDataPath("xsens-multiposition/xsens_gyro.mat"), options);
+  Recording r =
+      ReadLog(testing::RealDataPath("xsens-multiposition/xsens_acc.mat"), options);
+  Recording g =
+      ReadLog(testing::RealDataPath("xsens-multiposition/xsens_gyro.mat"), options);
   Recording shifted = g;
   shifted.time_s[100] += 0.005;
   EXPECT_THROW(MergeGyroLog(r, shifted, GyroUnits::kCounts), Error);

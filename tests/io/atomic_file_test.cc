@@ -18,9 +18,9 @@
 namespace mpcal {
 namespace {
 
-using ::testing::HasSubstr;
 using mpcal::testing::ReadFile;
 using mpcal::testing::ScratchDir;
+using ::testing::HasSubstr;
 
 std::size_t FilesIn(const ScratchDir& dir) {
   std::size_t n = 0;
@@ -56,7 +56,7 @@ TEST(AtomicFile, GetsOrdinaryPermissions) {
   ScratchDir dir;
   const std::string path = dir.Path("perm.txt");
   WriteFileAtomically(path, "x");
-  struct stat st{};
+  struct stat st {};
   ASSERT_EQ(stat(path.c_str(), &st), 0);
   const mode_t mask = umask(0);
   umask(mask);
@@ -129,8 +129,9 @@ TEST(AtomicFile, UnwritableDirectory) {
   if (geteuid() == 0) GTEST_SKIP() << "root writes anywhere";
   ScratchDir dir;
   std::filesystem::create_directory(dir.path() / "ro");
-  std::filesystem::permissions(dir.path() / "ro", std::filesystem::perms::owner_read |
-                                                      std::filesystem::perms::owner_exec);
+  std::filesystem::permissions(
+      dir.path() / "ro",
+      std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
   EXPECT_THROW(WriteFileAtomically((dir.path() / "ro" / "out.txt").string(), "x"), Error);
   std::filesystem::permissions(dir.path() / "ro", std::filesystem::perms::owner_all);
 }
@@ -204,7 +205,8 @@ TEST(RefuseOverwritingInput, SamePathLinkAndDifferentFiles) {
   ScratchDir dir;
   const std::string input = dir.Write("in.csv", "t,ax,ay,az\n");
   EXPECT_THROW(RefuseOverwritingInput(input, input), Error);
-  EXPECT_THROW(RefuseOverwritingInput(input, (dir.path() / "." / "in.csv").string()), Error);
+  EXPECT_THROW(RefuseOverwritingInput(input, (dir.path() / "." / "in.csv").string()),
+               Error);
   std::filesystem::create_hard_link(input, dir.Path("hard.csv"));
   EXPECT_THROW(RefuseOverwritingInput(input, dir.Path("hard.csv")), Error);
   std::filesystem::create_symlink(input, dir.Path("soft.csv"));

@@ -14,9 +14,9 @@
 namespace mpcal {
 namespace {
 
+using mpcal::testing::ScratchDir;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
-using mpcal::testing::ScratchDir;
 
 // Doubles are written with 17 significant digits: reading them back is
 // exact, far inside the 1e-15 relative the format promises.
@@ -75,7 +75,8 @@ void ExpectNear(double a, double b, const std::string& what) {
 void ExpectModelsEqual(const ErrorModel& a, const ErrorModel& b) {
   const auto va = ToVector(a);
   const auto vb = ToVector(b);
-  for (int i = 0; i < kNumModelParameters; ++i) ExpectNear(va[i], vb[i], std::string(kParameterNames[i]));
+  for (int i = 0; i < kNumModelParameters; ++i)
+    ExpectNear(va[i], vb[i], std::string(kParameterNames[i]));
 }
 
 std::string FromJsonError(const std::string& text) {
@@ -89,7 +90,9 @@ std::string FromJsonError(const std::string& text) {
 }
 
 // A valid file as JSON, to break one field at a time.
-nlohmann::json ValidJson() { return nlohmann::json::parse(CalibrationToJson(FullCalibration())); }
+nlohmann::json ValidJson() {
+  return nlohmann::json::parse(CalibrationToJson(FullCalibration()));
+}
 
 TEST(CalibrationFile, RoundTripIsExact) {
   const Calibration c = FullCalibration();
@@ -248,8 +251,9 @@ TEST(CalibrationFile, WriterRefusesNonFiniteValues) {
 }
 
 TEST(CalibrationFile, MalformedJsonGivesLineAndColumn) {
-  EXPECT_THAT(FromJsonError("{\n  \"format\": \"mpcal.accelerometer/1\",\n  oops\n}"),
-              AllOf(HasSubstr("calib.json"), HasSubstr("not valid JSON"), HasSubstr("line 3")));
+  EXPECT_THAT(
+      FromJsonError("{\n  \"format\": \"mpcal.accelerometer/1\",\n  oops\n}"),
+      AllOf(HasSubstr("calib.json"), HasSubstr("not valid JSON"), HasSubstr("line 3")));
   EXPECT_THAT(FromJsonError(""), HasSubstr("empty"));
   EXPECT_THAT(FromJsonError("[1, 2]"), HasSubstr("expected a JSON object"));
 }
@@ -273,22 +277,29 @@ TEST(CalibrationFile, FormatAndVersion) {
 }
 
 TEST(CalibrationFile, MissingAndWronglyTypedFieldsAreNamed) {
-  for (const char* field : {"model", "gravity_mps2", "input", "bias_mps2", "scale_factor_error",
+  for (const char* field : {"model",
+                            "gravity_mps2",
+                            "input",
+                            "bias_mps2",
+                            "scale_factor_error",
                             "non_orthogonality_rad"}) {
     nlohmann::json j = ValidJson();
     j.erase(field);
-    EXPECT_THAT(FromJsonError(j.dump()), HasSubstr(std::string("missing field '") + field + "'"));
+    EXPECT_THAT(FromJsonError(j.dump()),
+                HasSubstr(std::string("missing field '") + field + "'"));
   }
   nlohmann::json j = ValidJson();
   j["non_orthogonality_rad"].erase("zy");
   EXPECT_THAT(FromJsonError(j.dump()), HasSubstr("'non_orthogonality_rad.zy'"));
   j = ValidJson();
   j["fit"]["iterations"] = "seven";
-  EXPECT_THAT(FromJsonError(j.dump()),
-              AllOf(HasSubstr("'fit.iterations'"), HasSubstr("integer"), HasSubstr("a string")));
+  EXPECT_THAT(
+      FromJsonError(j.dump()),
+      AllOf(HasSubstr("'fit.iterations'"), HasSubstr("integer"), HasSubstr("a string")));
   j = ValidJson();
   j["bias_mps2"] = {1, 2};
-  EXPECT_THAT(FromJsonError(j.dump()), AllOf(HasSubstr("'bias_mps2'"), HasSubstr("2 elements")));
+  EXPECT_THAT(FromJsonError(j.dump()),
+              AllOf(HasSubstr("'bias_mps2'"), HasSubstr("2 elements")));
   j = ValidJson();
   j["std"]["bias_mps2"][1] = "x";
   EXPECT_THAT(FromJsonError(j.dump()), HasSubstr("'std.bias_mps2[1]'"));
@@ -297,14 +308,16 @@ TEST(CalibrationFile, MissingAndWronglyTypedFieldsAreNamed) {
   EXPECT_THAT(FromJsonError(j.dump()), HasSubstr("'positions[1].mean_mps2'"));
   j = ValidJson();
   j["input"]["mps2_per_unit"] = nullptr;
-  EXPECT_THAT(FromJsonError(j.dump()), AllOf(HasSubstr("'input.mps2_per_unit'"), HasSubstr("null")));
+  EXPECT_THAT(FromJsonError(j.dump()),
+              AllOf(HasSubstr("'input.mps2_per_unit'"), HasSubstr("null")));
 }
 
 TEST(CalibrationFile, UnknownModelAndUnits) {
   nlohmann::json j = ValidJson();
   j["model"] = "twelve-parameter";
-  EXPECT_THAT(FromJsonError(j.dump()),
-              AllOf(HasSubstr("unknown model 'twelve-parameter'"), HasSubstr("bias-scale-6")));
+  EXPECT_THAT(
+      FromJsonError(j.dump()),
+      AllOf(HasSubstr("unknown model 'twelve-parameter'"), HasSubstr("bias-scale-6")));
   j = ValidJson();
   j["input"]["units"] = "furlongs";
   EXPECT_THAT(FromJsonError(j.dump()), HasSubstr("unknown units 'furlongs'"));

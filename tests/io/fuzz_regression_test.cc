@@ -30,7 +30,8 @@ using testing::TestDataPath;
 
 std::vector<std::filesystem::path> Corpus(const std::string& target) {
   std::vector<std::filesystem::path> files;
-  for (const auto& e : std::filesystem::directory_iterator(TestDataPath("../fuzz/" + target))) {
+  for (const auto& e :
+       std::filesystem::directory_iterator(TestDataPath("../fuzz/" + target))) {
     if (e.is_regular_file()) files.push_back(e.path());
   }
   std::sort(files.begin(), files.end());

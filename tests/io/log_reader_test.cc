@@ -16,12 +16,12 @@
 namespace mpcal {
 namespace {
 
-using ::testing::AllOf;
-using ::testing::HasSubstr;
-using ::testing::ElementsAre;
-using mpcal::testing::ScratchDir;
 using mpcal::testing::RealDataPath;
+using mpcal::testing::ScratchDir;
 using mpcal::testing::TestDataPath;
+using ::testing::AllOf;
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
 
 LogOptions WithUnits(AccelUnits units) {
   LogOptions options;
@@ -35,12 +35,15 @@ LogOptions WithTimeUnit(TimeUnit unit) {
   return options;
 }
 
-Recording Read(const ScratchDir& dir, const std::string& content, LogOptions options = {}) {
+Recording Read(const ScratchDir& dir,
+               const std::string& content,
+               LogOptions options = {}) {
   return ReadLog(dir.Write("log.txt", content), options);
 }
 
 // The message of the mpcal::Error that reading `content` throws.
-std::string ReadError(const ScratchDir& dir, const std::string& content,
+std::string ReadError(const ScratchDir& dir,
+                      const std::string& content,
                       LogOptions options = {}) {
   try {
     Read(dir, content, options);
@@ -77,10 +80,11 @@ TEST(ReadLog, HeaderNamesAreCaseInsensitiveAndExtraColumnsIgnored) {
 
 TEST(ReadLog, WhitespaceSeparatedWithoutHeaderIsTimeThenAxes) {
   ScratchDir dir;
-  const Recording r = Read(dir,
-                           "   2.9840000e-02   3.3108000e+04   3.3329000e+04   3.6429000e+04\n"
-                           "\t3.9857000e-02 \t 3.3096000e+04   3.3336000e+04   3.6437000e+04\n",
-                           WithUnits(AccelUnits::kCounts));
+  const Recording r =
+      Read(dir,
+           "   2.9840000e-02   3.3108000e+04   3.3329000e+04   3.6429000e+04\n"
+           "\t3.9857000e-02 \t 3.3096000e+04   3.3336000e+04   3.6437000e+04\n",
+           WithUnits(AccelUnits::kCounts));
   ASSERT_EQ(r.size(), 2u);
   EXPECT_EQ(r.time_s[1], 3.9857e-02);
   EXPECT_EQ(r.accel[0], Eigen::Vector3d(33108, 33329, 36429));
@@ -105,8 +109,8 @@ TEST(ReadLog, SemicolonsDecimalCommasCommentsAndCrlf) {
 
 TEST(ReadLog, TabSeparated) {
   ScratchDir dir;
-  const Recording r = Read(dir, "t\tax\tay\taz\n1\t2\t3\t4\n2\t5\t6\t7\n",
-                           WithTimeUnit(TimeUnit::kSeconds));
+  const Recording r = Read(
+      dir, "t\tax\tay\taz\n1\t2\t3\t4\n2\t5\t6\t7\n", WithTimeUnit(TimeUnit::kSeconds));
   ASSERT_EQ(r.size(), 2u);
   EXPECT_EQ(r.accel[1], Eigen::Vector3d(5, 6, 7));
 }
@@ -184,8 +188,10 @@ TEST(ReadLog, IntegerTimestampsUnitDetectedFromSpacing) {
     const char* unit;
   };
   // 100 Hz in ms, µs and ns; 1 kHz in µs.
-  for (const Case& c : {Case{10, 1e-3, "ms"}, Case{10000, 1e-6, "us"},
-                        Case{10000000, 1e-9, "ns"}, Case{1000, 1e-6, "us"}}) {
+  for (const Case& c : {Case{10, 1e-3, "ms"},
+                        Case{10000, 1e-6, "us"},
+                        Case{10000000, 1e-9, "ns"},
+                        Case{1000, 1e-6, "us"}}) {
     std::string log = "t,ax,ay,az\n";
     const long long start = 1700000000LL;
     for (int i = 0; i < 20; ++i) log += std::to_string(start + i * c.step) + ",0,0,9.8\n";
@@ -202,20 +208,22 @@ TEST(ReadLog, GivenTimeUnitOverridesDetection) {
   ScratchDir dir;
   LogOptions options;
   options.time_unit = TimeUnit::kMilliseconds;
-  const Recording r = Read(dir, "t,ax,ay,az\n1000,0,0,1\n2000,0,0,1\n3000,0,0,1\n", options);
+  const Recording r =
+      Read(dir, "t,ax,ay,az\n1000,0,0,1\n2000,0,0,1\n3000,0,0,1\n", options);
   EXPECT_DOUBLE_EQ(r.time_s[1] - r.time_s[0], 1.0);
   EXPECT_TRUE(r.warnings.empty());
 }
 
 TEST(ReadLog, DuplicatedTimestampsDroppedAndReported) {
   ScratchDir dir;
-  const Recording r = Read(dir, "t,ax,ay,az\n0.1,1,1,1\n0.2,2,2,2\n0.2,3,3,3\n0.3,4,4,4\n");
+  const Recording r =
+      Read(dir, "t,ax,ay,az\n0.1,1,1,1\n0.2,2,2,2\n0.2,3,3,3\n0.3,4,4,4\n");
   ASSERT_EQ(r.size(), 3u);
   EXPECT_EQ(r.accel[1].x(), 2.0);  // the first of the duplicates is kept
   EXPECT_EQ(r.accel[2].x(), 4.0);
   ASSERT_EQ(r.warnings.size(), 1u);
-  EXPECT_THAT(r.warnings[0], AllOf(HasSubstr("1 row with a duplicated timestamp"),
-                                   HasSubstr("line 4")));
+  EXPECT_THAT(r.warnings[0],
+              AllOf(HasSubstr("1 row with a duplicated timestamp"), HasSubstr("line 4")));
 }
 
 TEST(ReadLog, GapsReported) {
@@ -238,11 +246,12 @@ TEST(ReadLog, TimeGoingBackIsAnError) {
 TEST(ReadLog, TimeGoingBackFromAWrappedCounterSaysSo) {
   // A 32-bit microsecond counter wraps at 4294.967296 s.
   ScratchDir dir;
-  EXPECT_THAT(ReadError(dir,
-                        "t,ax,ay,az\n4294950000,0,0,1\n4294960000,0,0,1\n"
-                        "2704,0,0,1\n12704,0,0,1\n",
-                        WithTimeUnit(TimeUnit::kMicroseconds)),
-              AllOf(HasSubstr("time goes back"), HasSubstr("32-bit counter that wrapped")));
+  EXPECT_THAT(
+      ReadError(dir,
+                "t,ax,ay,az\n4294950000,0,0,1\n4294960000,0,0,1\n"
+                "2704,0,0,1\n12704,0,0,1\n",
+                WithTimeUnit(TimeUnit::kMicroseconds)),
+      AllOf(HasSubstr("time goes back"), HasSubstr("32-bit counter that wrapped")));
   // Time that simply goes back gets no such guess.
   EXPECT_THAT(ReadError(dir, "t,ax,ay,az\n1,0,0,1\n2,0,0,1\n1.5,0,0,1\n"),
               ::testing::Not(HasSubstr("counter")));
@@ -287,10 +296,13 @@ TEST(ReadLog, TruncatedLineFollowedByBlankLinesIsStillTheLast) {
 TEST(ReadLog, MalformedLineInTheMiddleNamesLineAndExpectation) {
   ScratchDir dir;
   EXPECT_THAT(ReadError(dir, "t,ax,ay,az\n0.1,1,2,3\n0.2,4,5\n0.3,7,8,9\n"),
-              AllOf(HasSubstr("log.txt:3"), HasSubstr("expected at least 4 columns"),
+              AllOf(HasSubstr("log.txt:3"),
+                    HasSubstr("expected at least 4 columns"),
                     HasSubstr("found 3")));
   EXPECT_THAT(ReadError(dir, "t,ax,ay,az\n0.1,1,2,3\n0.2,4,abc,5\n0.3,7,8,9\n"),
-              AllOf(HasSubstr("log.txt:3"), HasSubstr("'ay'"), HasSubstr("'abc'"),
+              AllOf(HasSubstr("log.txt:3"),
+                    HasSubstr("'ay'"),
+                    HasSubstr("'abc'"),
                     HasSubstr("expected a number")));
   EXPECT_THAT(ReadError(dir, "t,ax,ay,az\n0.1,1,2,3\n0.2,4,,5\n0.3,7,8,9\n"),
               AllOf(HasSubstr("log.txt:3"), HasSubstr("'ay'"), HasSubstr("empty")));
@@ -301,9 +313,12 @@ TEST(ReadLog, MalformedLineInTheMiddleNamesLineAndExpectation) {
 TEST(ReadLog, NonFiniteValuesRejectedWithLineAndColumn) {
   ScratchDir dir;
   for (const char* bad : {"nan", "NaN", "inf", "-inf", "Infinity"}) {
-    const std::string log = std::string("t,ax,ay,az\n0.1,1,2,3\n0.2,4,") + bad + ",5\n0.3,7,8,9\n";
+    const std::string log =
+        std::string("t,ax,ay,az\n0.1,1,2,3\n0.2,4,") + bad + ",5\n0.3,7,8,9\n";
     EXPECT_THAT(ReadError(dir, log),
-                AllOf(HasSubstr("log.txt:3"), HasSubstr("non-finite"), HasSubstr(bad),
+                AllOf(HasSubstr("log.txt:3"),
+                      HasSubstr("non-finite"),
+                      HasSubstr(bad),
                       HasSubstr("'ay' (index 2)")))
         << bad;
   }
@@ -338,8 +353,9 @@ TEST(ReadLog, MissingFileDirectoryAndEmptyFile) {
 TEST(ReadLog, HeaderOnlyProseAndBinaryJunk) {
   ScratchDir dir;
   EXPECT_THAT(ReadError(dir, "t,ax,ay,az\n"), HasSubstr("no data rows"));
-  EXPECT_THAT(ReadError(dir, "Dear diary,\ntoday I held the sensor still.\nIt was fun.\n"),
-              AllOf(HasSubstr("log.txt:2"), HasSubstr("expected a row of numbers")));
+  EXPECT_THAT(
+      ReadError(dir, "Dear diary,\ntoday I held the sensor still.\nIt was fun.\n"),
+      AllOf(HasSubstr("log.txt:2"), HasSubstr("expected a row of numbers")));
   EXPECT_THAT(ReadError(dir, "time,temperature,pressure\n1,20,1000\n"),
               AllOf(HasSubstr("names no accelerometer columns"), HasSubstr("--columns")));
   std::string junk = "\x89PNG\r\n\x1a\n";
@@ -350,8 +366,9 @@ TEST(ReadLog, HeaderOnlyProseAndBinaryJunk) {
 
 TEST(ReadLog, TooFewColumns) {
   ScratchDir dir;
-  EXPECT_THAT(ReadError(dir, "1 2 3\n4 5 6\n"),
-              AllOf(HasSubstr("log.txt:1"), HasSubstr("too few columns"), HasSubstr("found 3")));
+  EXPECT_THAT(
+      ReadError(dir, "1 2 3\n4 5 6\n"),
+      AllOf(HasSubstr("log.txt:1"), HasSubstr("too few columns"), HasSubstr("found 3")));
   EXPECT_THAT(ReadError(dir, "t,ax\n1,2\n"), HasSubstr("no column for ay"));
 }
 
@@ -359,15 +376,15 @@ TEST(ReadLog, BadColumnsOption) {
   ScratchDir dir;
   LogOptions unknown_key;
   unknown_key.columns = "t=0,ax=1,ay=2,az=3,temp=4";
-  EXPECT_THAT(ReadError(dir, "1 2 3 4 5\n", unknown_key), HasSubstr("unknown key 'temp'"));
+  EXPECT_THAT(ReadError(dir, "1 2 3 4 5\n", unknown_key),
+              HasSubstr("unknown key 'temp'"));
   LogOptions unknown_name;
   unknown_name.columns = "ax=accel_north";
   EXPECT_THAT(ReadError(dir, "t,ax,ay,az\n1,2,3,4\n", unknown_name),
               AllOf(HasSubstr("no column 'accel_north'"), HasSubstr("t, ax, ay, az")));
   LogOptions names_without_header;
   names_without_header.columns = "t=time,ax=1,ay=2,az=3";
-  EXPECT_THAT(ReadError(dir, "1 2 3 4\n", names_without_header),
-              HasSubstr("no header"));
+  EXPECT_THAT(ReadError(dir, "1 2 3 4\n", names_without_header), HasSubstr("no header"));
 }
 
 TEST(ReadLog, StandardInput) {
@@ -430,8 +447,8 @@ TEST(ReadLog, RealXsensRecordingInCounts) {
 TEST(ReadLog, RealFerrarisSessionWithSampleIndex) {
   LogOptions options;
   options.rate_hz = 102.4;
-  const Recording r = ReadLog(RealDataPath("imucal-ferraris/example_ferraris_session.csv"),
-                              options);
+  const Recording r =
+      ReadLog(RealDataPath("imucal-ferraris/example_ferraris_session.csv"), options);
   EXPECT_GT(r.size(), 10000u);
   EXPECT_EQ(r.accel[0].x(), 10.332114257812501);
   EXPECT_EQ(r.gyro_radps.size(), r.size());
@@ -462,8 +479,12 @@ TEST(LogOptions, DefaultsAreValidAndBadFieldsNamed) {
 }
 
 TEST(TimeUnit, ToStringAndParseRoundTrip) {
-  for (TimeUnit u : {TimeUnit::kAuto, TimeUnit::kSeconds, TimeUnit::kMilliseconds,
-                     TimeUnit::kMicroseconds, TimeUnit::kNanoseconds, TimeUnit::kSampleIndex}) {
+  for (TimeUnit u : {TimeUnit::kAuto,
+                     TimeUnit::kSeconds,
+                     TimeUnit::kMilliseconds,
+                     TimeUnit::kMicroseconds,
+                     TimeUnit::kNanoseconds,
+                     TimeUnit::kSampleIndex}) {
     EXPECT_EQ(ParseTimeUnit(ToString(u)), u);
   }
   EXPECT_EQ(ParseTimeUnit("fortnights"), std::nullopt);
@@ -471,8 +492,8 @@ TEST(TimeUnit, ToStringAndParseRoundTrip) {
 
 TEST(LogScanner, KeepsEveryLineAndTheSpansOfTheNumbers) {
   ScratchDir dir;
-  const std::string path =
-      dir.Write("log.csv", "# c\r\nt, ax, ay, az, temp\r\n0.5, 1.25, -2, 3e1, 20\r\n\r\n");
+  const std::string path = dir.Write(
+      "log.csv", "# c\r\nt, ax, ay, az, temp\r\n0.5, 1.25, -2, 3e1, 20\r\n\r\n");
   LogScanner scanner(path, {});
   std::vector<std::string> texts;
   LogLine line;
@@ -490,7 +511,8 @@ TEST(LogScanner, KeepsEveryLineAndTheSpansOfTheNumbers) {
                 "-2");
     }
   }
-  EXPECT_THAT(texts, ElementsAre("# c", "t, ax, ay, az, temp", "0.5, 1.25, -2, 3e1, 20", ""));
+  EXPECT_THAT(texts,
+              ElementsAre("# c", "t, ax, ay, az, temp", "0.5, 1.25, -2, 3e1, 20", ""));
   EXPECT_EQ(scanner.layout().delimiter, ',');
   EXPECT_EQ(scanner.layout().header_line, 2u);
   EXPECT_EQ(scanner.layout().time_column, 0);
@@ -516,15 +538,18 @@ TEST(ReadLog, SerialBootTextBeforeTheHeaderIsSkippedWithAWarning) {
   const Recording r = ReadLog(dir.Write("good.txt", good), {});
   ASSERT_EQ(r.size(), 20u);
   EXPECT_NEAR(r.time_s[1] - r.time_s[0], 0.01, 1e-12);  // `millis`: ms from the name
-  EXPECT_THAT(r.warnings, ::testing::Contains(HasSubstr(
-                              "skipped 3 lines before the header (serial boot text or a "
-                              "title); the header starts on line 4")));
+  EXPECT_THAT(r.warnings,
+              ::testing::Contains(
+                  HasSubstr("skipped 3 lines before the header (serial boot text or a "
+                            "title); the header starts on line 4")));
 }
 
 TEST(ReadLog, TimeUnitFromTheColumnName) {
   ScratchDir dir;
-  for (const auto& [name, step] : {std::pair{"timestamp_ms", 1e-3}, std::pair{"time_us", 1e-6},
-                                   std::pair{"\"Time (s)\"", 1.0}, std::pair{"micros", 1e-6}}) {
+  for (const auto& [name, step] : {std::pair{"timestamp_ms", 1e-3},
+                                   std::pair{"time_us", 1e-6},
+                                   std::pair{"\"Time (s)\"", 1.0},
+                                   std::pair{"micros", 1e-6}}) {
     std::string log = std::string(name) + ",ax,ay,az\n";
     for (int i = 0; i < 10; ++i) log += std::to_string(5 * i) + ",0,0,9.8\n";
     const Recording r = Read(dir, log);
@@ -536,8 +561,9 @@ TEST(ReadLog, AnIndexSteppingByOneAsksForTheRate) {
   ScratchDir dir;
   std::string log;
   for (int i = 0; i < 20; ++i) log += std::to_string(i) + " 0.01 0.02 1.0\n";
-  EXPECT_THAT(ReadError(dir, log),
-              HasSubstr("steps by exactly 1 on every row: it is a sample index, not a time"));
+  EXPECT_THAT(
+      ReadError(dir, log),
+      HasSubstr("steps by exactly 1 on every row: it is a sample index, not a time"));
   LogOptions with_rate;
   with_rate.rate_hz = 100.0;
   EXPECT_NEAR(Read(dir, log, with_rate).time_s[1], 0.01, 1e-12);
@@ -545,9 +571,10 @@ TEST(ReadLog, AnIndexSteppingByOneAsksForTheRate) {
 
 TEST(ReadLog, ImpossibleReadingIsAnErrorNamingTheLine) {
   ScratchDir dir;
-  EXPECT_THAT(ReadError(dir, "t,ax,ay,az\n0,0,0,9.8\n0.01,1e20,0,9.8\n0.02,0,0,9.8\n"),
-              HasSubstr("log.txt:3: reading '1e20' in column 'ax' (index 1) is beyond any "
-                        "accelerometer's range"));
+  EXPECT_THAT(
+      ReadError(dir, "t,ax,ay,az\n0,0,0,9.8\n0.01,1e20,0,9.8\n0.02,0,0,9.8\n"),
+      HasSubstr("log.txt:3: reading '1e20' in column 'ax' (index 1) is beyond any "
+                "accelerometer's range"));
   // 30,000 g read as g is impossible; as counts it is a reading.
   const std::string counts = "t,ax,ay,az\n0,0,0,30000\n0.01,0,0,30001\n";
   EXPECT_THAT(ReadError(dir, counts, WithUnits(AccelUnits::kG)), HasSubstr("beyond"));

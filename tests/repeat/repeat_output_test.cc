@@ -132,7 +132,8 @@ TEST(RepeatabilityJson, ReaderRejectsBadInputNamingTheField) {
                     {"format 'mpcal.accelerometer/1' is not 'mpcal.repeatability/1'"});
   bad = j;
   bad["format"] = "mpcal.repeatability/2";
-  ExpectReaderError(bad.dump(), {"is version 2 of the format; this mpcal reads version 1"});
+  ExpectReaderError(bad.dump(),
+                    {"is version 2 of the format; this mpcal reads version 1"});
   bad = j;
   bad.erase("trials");
   ExpectReaderError(bad.dump(), {"missing field 'trials'"});
@@ -141,20 +142,22 @@ TEST(RepeatabilityJson, ReaderRejectsBadInputNamingTheField) {
   ExpectReaderError(bad.dump(), {"trials", "at least 2"});
   bad = j;
   bad["trials"] = 4;
-  ExpectReaderError(bad.dump(),
-                    {"field 'parameters.bias_mps2.values' must be an array of 4 entries, found 3"});
+  ExpectReaderError(
+      bad.dump(),
+      {"field 'parameters.bias_mps2.values' must be an array of 4 entries, found 3"});
   bad = j;
   bad["parameters"]["bias_mps2"]["values"][1][2] = "0.1";
-  ExpectReaderError(bad.dump(),
-                    {"field 'parameters.bias_mps2.values[1][2]' must be a number, found a string"});
+  ExpectReaderError(
+      bad.dump(),
+      {"field 'parameters.bias_mps2.values[1][2]' must be a number, found a string"});
   bad = j;
   bad["parameters"]["scale_factor_error"]["std_sample"] = {1.0, 2.0};
-  ExpectReaderError(bad.dump(),
-                    {"field 'parameters.scale_factor_error.std_sample' must be an array of 3 entries"});
+  ExpectReaderError(
+      bad.dump(),
+      {"field 'parameters.scale_factor_error.std_sample' must be an array of 3 entries"});
   bad = j;
   bad["parameters"]["non_orthogonality_rad"].erase("zy");
-  ExpectReaderError(bad.dump(),
-                    {"missing field 'parameters.non_orthogonality_rad.zy'"});
+  ExpectReaderError(bad.dump(), {"missing field 'parameters.non_orthogonality_rad.zy'"});
   bad = j;
   bad["parameters"]["non_orthogonality_rad"]["yz"]["changed"] = "yes";
   ExpectReaderError(

@@ -57,28 +57,32 @@ TEST(VerificationJson, ReadsTheFiguresAndResolvesTrajectoryPaths) {
 TEST(VerificationJson, RejectsOtherFormatsAndMissingFieldsByName) {
   EXPECT_THAT(ErrorOf([] { ParseVerificationJson("{", "r.json"); }),
               HasSubstr("r.json: not valid JSON"));
-  EXPECT_THAT(ErrorOf([] {
-                ParseVerificationJson(R"({"format": "mpcal.accelerometer/1"})", "c.json");
-              }),
-              HasSubstr("c.json: format 'mpcal.accelerometer/1' is not 'mpcal.verification/1': "
-                        "not a file written by 'mpcal verify'"));
+  EXPECT_THAT(
+      ErrorOf([] {
+        ParseVerificationJson(R"({"format": "mpcal.accelerometer/1"})", "c.json");
+      }),
+      HasSubstr("c.json: format 'mpcal.accelerometer/1' is not 'mpcal.verification/1': "
+                "not a file written by 'mpcal verify'"));
   EXPECT_THAT(ErrorOf([] {
                 ParseVerificationJson(R"({"format": "mpcal.verification/2"})", "r.json");
               }),
               HasSubstr("is version 2 of the format; this mpcal reads version 1"));
-  EXPECT_THAT(ErrorOf([] { ParseVerificationJson("[1, 2]", "r.json"); }),
-              HasSubstr("r.json: expected a JSON object with \"format\": \"mpcal.verification/1\""));
+  EXPECT_THAT(
+      ErrorOf([] { ParseVerificationJson("[1, 2]", "r.json"); }),
+      HasSubstr(
+          "r.json: expected a JSON object with \"format\": \"mpcal.verification/1\""));
   EXPECT_THAT(
       ErrorOf([] { ParseVerificationJson(R"({"raw": {}})", "r.json"); }),
       HasSubstr("r.json: no 'format' field: not a file written by 'mpcal verify'"));
-  EXPECT_THAT(ErrorOf([] {
-                ParseVerificationJson(
-                    R"({"format": "mpcal.verification/1",
+  EXPECT_THAT(
+      ErrorOf([] {
+        ParseVerificationJson(
+            R"({"format": "mpcal.verification/1",
                         "reference": {"start_end_distance_m": 0.2},
                         "raw": {"start_end_distance_m": "far"}})",
-                    "r.json");
-              }),
-              HasSubstr("field 'raw.start_end_distance_m' must be a number, found a string"));
+            "r.json");
+      }),
+      HasSubstr("field 'raw.start_end_distance_m' must be a number, found a string"));
   EXPECT_THAT(ErrorOf([] {
                 ParseVerificationJson(
                     R"({"format": "mpcal.verification/1", "reference": {}})", "r.json");

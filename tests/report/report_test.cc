@@ -180,8 +180,9 @@ TEST(Report, CoverageNamesTheMissingDirections) {
   in.calibration = testing::FixtureCalibration(faces);
   for (PositionSummary& p : in.calibration->positions) p.used = true;
   const std::string html = RenderReport(in);
-  EXPECT_THAT(html, HasSubstr("6 of the 26 canonical directions covered; missing (named by "
-                              "what points down): "));
+  EXPECT_THAT(html,
+              HasSubstr("6 of the 26 canonical directions covered; missing (named by "
+                        "what points down): "));
   EXPECT_THAT(html, HasSubstr("+x+y+z corner"));
   EXPECT_THAT(html, HasSubstr("-x-y-z corner"));
   EXPECT_EQ(Count(html, "class=\"canonical missing\""), 20u + 4u)

@@ -185,13 +185,16 @@ TEST(SphereMap, TheCubePositionsCoverAllTwentySixDirections) {
 // their labels over each other ("16"); each label now clears the others.
 TEST(SphereMap, LabelsOfPositionsInOneOrientationDoNotOverlap) {
   SphereMapSpec spec;
-  spec.points = {{Eigen::Vector3d::UnitZ(), "1", true}, {Eigen::Vector3d::UnitZ(), "6", true},
+  spec.points = {{Eigen::Vector3d::UnitZ(), "1", true},
+                 {Eigen::Vector3d::UnitZ(), "6", true},
                  {Eigen::Vector3d::UnitZ(), "12", true}};
   const std::string svg = SphereMap(spec);
-  const std::regex label("<text x=\"([-0-9.]+)\" y=\"([-0-9.]+)\"[^>]*class=\"point-label\"");
+  const std::regex label(
+      "<text x=\"([-0-9.]+)\" y=\"([-0-9.]+)\"[^>]*class=\"point-label\"");
   std::vector<std::pair<double, double>> at;
   for (auto it = std::sregex_iterator(svg.begin(), svg.end(), label);
-       it != std::sregex_iterator(); ++it) {
+       it != std::sregex_iterator();
+       ++it) {
     at.emplace_back(std::stod((*it)[1]), std::stod((*it)[2]));
   }
   ASSERT_EQ(at.size(), 3u);

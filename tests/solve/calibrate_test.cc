@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include <Eigen/QR>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <Eigen/QR>
 
 #include "mpcal/error.h"
 #include "mpcal/log_reader.h"
@@ -38,8 +38,10 @@ TEST_P(PerPreset, RecoversTheTruthWithinTheCramerRaoBound) {
   const CalibrateResult r = CalibrateRecording(s.recording, CalibrateOptions{});
   ASSERT_TRUE(r.solve.converged()) << r.solve.message;
   EXPECT_EQ(r.positions.size(), s.directions.size() + 1);  // + the initial rest
-  const Eigen::Matrix<double, 9, 1> bound = SimulatedBoundSigma(s, options.initial_rest_s);
-  const Eigen::Matrix<double, 9, 1> error = ToVector(r.calibration.model) - ToVector(s.truth.model);
+  const Eigen::Matrix<double, 9, 1> bound =
+      SimulatedBoundSigma(s, options.initial_rest_s);
+  const Eigen::Matrix<double, 9, 1> error =
+      ToVector(r.calibration.model) - ToVector(s.truth.model);
   const Eigen::Matrix<double, 9, 1> reported = ToVector(*r.calibration.std);
   for (int i = 0; i < 9; ++i) {
     EXPECT_LT(std::abs(error[i]), kBoundSigmas * bound[i]) << kParameterNames[i];
@@ -48,7 +50,8 @@ TEST_P(PerPreset, RecoversTheTruthWithinTheCramerRaoBound) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Presets, PerPreset,
+INSTANTIATE_TEST_SUITE_P(Presets,
+                         PerPreset,
                          ::testing::Values("colibri", "inertiacube3", "mti-g"));
 
 // In counts the nominal scale is mpcal's own choice, so parameters are not
@@ -60,10 +63,12 @@ TEST(CalibrateRecording, RawCountsNeedNoInitialGuess) {
   const CalibrateResult r = CalibrateRecording(s.recording, CalibrateOptions{});
   ASSERT_TRUE(r.solve.converged());
   EXPECT_EQ(r.calibration.input_units, AccelUnits::kCounts);
-  const Eigen::Matrix<double, 9, 1> bound = SimulatedBoundSigma(s, options.initial_rest_s);
+  const Eigen::Matrix<double, 9, 1> bound =
+      SimulatedBoundSigma(s, options.initial_rest_s);
   // A reading maps to within (bias σ + g · scale σ) per axis of the truth.
-  const double tolerance = kBoundSigmas * (bound.head<3>().maxCoeff() +
-                                           kStandardGravityMps2 * bound.segment<3>(3).maxCoeff());
+  const double tolerance =
+      kBoundSigmas * (bound.head<3>().maxCoeff() +
+                      kStandardGravityMps2 * bound.segment<3>(3).maxCoeff());
   for (const Eigen::Vector3d& u : CubeDirections26()) {
     const Eigen::Vector3d counts =
         s.truth.model.Forward(kStandardGravityMps2 * u) / s.truth.mps2_per_unit;
@@ -77,7 +82,8 @@ TEST(CalibrateRecording, ReadingsInGGiveTheSameCalibrationAsInMps2) {
   const CalibrateResult mps2 = CalibrateRecording(SimulateStatic(options).recording, {});
   options.units = AccelUnits::kG;
   const CalibrateResult g = CalibrateRecording(SimulateStatic(options).recording, {});
-  EXPECT_LT((ToVector(mps2.calibration.model) - ToVector(g.calibration.model)).norm(), 1e-6);
+  EXPECT_LT((ToVector(mps2.calibration.model) - ToVector(g.calibration.model)).norm(),
+            1e-6);
   EXPECT_DOUBLE_EQ(g.calibration.mps2_per_unit, kStandardGravityMps2);
 }
 
@@ -120,12 +126,14 @@ TEST(CalibrateRecording, RefusesTooFewPositionsAndSaysWhatToRecord) {
 // weights), started from mpcal's estimate. It minimises exactly the RMS the
 // issue compares, so mpcal's weighted fit cannot beat it, only come close.
 double IndependentUnweightedRms(const std::vector<PositionObservation>& positions,
-                                ErrorModel model, double gravity_mps2) {
+                                ErrorModel model,
+                                double gravity_mps2) {
   auto residuals = [&](const Eigen::Matrix<double, 9, 1>& p) {
     const ErrorModel m = FromVector(p);
     Eigen::VectorXd r(static_cast<Eigen::Index>(positions.size()));
     for (std::size_t k = 0; k < positions.size(); ++k) {
-      r[static_cast<Eigen::Index>(k)] = m.Correct(positions[k].mean_mps2).norm() - gravity_mps2;
+      r[static_cast<Eigen::Index>(k)] =
+          m.Correct(positions[k].mean_mps2).norm() - gravity_mps2;
     }
     return r;
   };
@@ -178,7 +186,8 @@ TEST(RealRecordings, FerrarisSixPosesCalibrateWithTheSixParameterModelOnly) {
   const CalibrateResult r = CalibrateRecording(rec, six);
   ASSERT_TRUE(r.solve.converged());
   EXPECT_LT(r.solve.residual_rms_after_mps2, 0.2 * r.solve.residual_rms_before_mps2);
-  const double independent = IndependentUnweightedRms(r.positions, r.solve.estimate, 9.80665);
+  const double independent =
+      IndependentUnweightedRms(r.positions, r.solve.estimate, 9.80665);
   EXPECT_LT(r.solve.residual_rms_after_mps2, 1.2 * independent);
 }
 

@@ -77,7 +77,9 @@ TEST(Solve, FindsABiasDriftAndReportsTheBiasAtTheMiddleOfTheSession) {
     bound_positions[k].time_from_reference_s = 0.5 * (p.start_s + p.end_s) - mean_time_s;
   }
   const Eigen::Matrix<double, 9, 1> bound =
-      CramerRaoBoundWithDrift(truth, bound_positions, kTestGravityMps2).diagonal().cwiseSqrt();
+      CramerRaoBoundWithDrift(truth, bound_positions, kTestGravityMps2)
+          .diagonal()
+          .cwiseSqrt();
   const Eigen::Matrix<double, 9, 1> error = ToVector(r.estimate) - ToVector(truth);
   for (int i = 0; i < 9; ++i) {
     EXPECT_LT(std::abs(error[i]), 4.0 * bound[i]) << kParameterNames[i];

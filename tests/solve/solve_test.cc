@@ -14,14 +14,14 @@
 namespace mpcal {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::ConsumerGrade;
 using testing::CubeDirections;
+using ::testing::HasSubstr;
 using testing::kTestGravityMps2;
 using testing::MakeSession;
 using testing::Tilted;
 
-constexpr double kNoiseFreeTolerance = 1e-8;  // packed parameters, noise-free means
+constexpr double kNoiseFreeTolerance = 1e-8;      // packed parameters, noise-free means
 const Eigen::Vector3d kNoise(0.02, 0.025, 0.03);  // m/s² per sample
 constexpr std::size_t kSamples = 1000;
 
@@ -45,8 +45,8 @@ TEST(InitialiseSixPosition, IsExactForAxisAlignedPositionsWithoutAngles) {
 TEST(Solve, RecoversConsumerGradeErrorsExactlyWithoutNoise) {
   std::mt19937_64 rng(2);
   const ErrorModel truth = ConsumerGrade();
-  const auto session = MakeSession(truth, Tilted(CubeDirections(), 0.1, rng),
-                                   Eigen::Vector3d::Constant(1e-9), 1, rng);
+  const auto session = MakeSession(
+      truth, Tilted(CubeDirections(), 0.1, rng), Eigen::Vector3d::Constant(1e-9), 1, rng);
   const SolveResult r = Solve(session.positions, SolveOptions{});
   ASSERT_TRUE(r.converged()) << r.message;
   EXPECT_LT((ToVector(r.estimate) - ToVector(truth)).cwiseAbs().maxCoeff(),
@@ -72,7 +72,9 @@ TEST(Solve, ReachesTheCramerRaoBound) {
     const SolveResult r = Solve(session.positions, options);
     ASSERT_TRUE(r.converged());
     const Eigen::Matrix<double, 9, 1> bound =
-        CramerRaoBound(truth, session.bound_positions, kTestGravityMps2).diagonal().cwiseSqrt();
+        CramerRaoBound(truth, session.bound_positions, kTestGravityMps2)
+            .diagonal()
+            .cwiseSqrt();
     const Eigen::Matrix<double, 9, 1> ratio =
         (ToVector(r.estimate) - ToVector(truth)).cwiseQuotient(bound);
     sum_squared_ratio += ratio.squaredNorm();
@@ -102,9 +104,12 @@ TEST(Solve, FourteenPositionsScatteringTwiceTheirNoiseGetAnHonest1Sigma) {
   directions.push_back(cube[1]);
   ASSERT_EQ(directions.size(), 14u);
   constexpr double kExcess = 1.9;
-  auto session = MakeSession(truth, Tilted(directions, 0.1, rng), kExcess * kNoise, kSamples, rng);
+  auto session =
+      MakeSession(truth, Tilted(directions, 0.1, rng), kExcess * kNoise, kSamples, rng);
   const Eigen::Matrix<double, 9, 1> real_bound =
-      CramerRaoBound(truth, session.bound_positions, kTestGravityMps2).diagonal().cwiseSqrt();
+      CramerRaoBound(truth, session.bound_positions, kTestGravityMps2)
+          .diagonal()
+          .cwiseSqrt();
   for (auto& p : session.positions) p.sample_std_mps2 /= kExcess;
   const SolveResult r = Solve(session.positions, SolveOptions{});
   ASSERT_TRUE(r.converged()) << r.message;
@@ -129,8 +134,8 @@ TEST(Solve, SixParameterModelHoldsTheAnglesAtZero) {
   ASSERT_TRUE(r.converged());
   EXPECT_EQ(r.estimate.theta_yz_rad, 0.0);
   EXPECT_EQ(r.std.theta_zy_rad, 0.0);
-  const auto bound = CramerRaoBound(truth, session.bound_positions, kTestGravityMps2,
-                                    ModelKind::kBiasScale6);
+  const auto bound = CramerRaoBound(
+      truth, session.bound_positions, kTestGravityMps2, ModelKind::kBiasScale6);
   for (int i = 0; i < 6; ++i) {
     EXPECT_LT(std::abs(ToVector(r.estimate)[i] - ToVector(truth)[i]),
               5.0 * std::sqrt(bound(i, i)))
@@ -183,9 +188,10 @@ TEST(Solve, RejectsNonFiniteMeans) {
 constexpr double kBumpMps2 = 0.05;
 
 testing::SyntheticSession SessionWithABump(std::mt19937_64& rng, std::size_t bumped) {
-  auto session = MakeSession(ConsumerGrade(), Tilted(CubeDirections(), 0.1, rng), kNoise,
-                             kSamples, rng);
-  session.positions[bumped].mean_mps2 += kBumpMps2 * session.positions[bumped].mean_mps2.normalized();
+  auto session = MakeSession(
+      ConsumerGrade(), Tilted(CubeDirections(), 0.1, rng), kNoise, kSamples, rng);
+  session.positions[bumped].mean_mps2 +=
+      kBumpMps2 * session.positions[bumped].mean_mps2.normalized();
   session.positions[bumped].start_s = 120.0;
   session.positions[bumped].end_s = 130.0;
   return session;
@@ -199,7 +205,8 @@ TEST(Solve, ExcludesABumpedPositionAndNamesIt) {
   EXPECT_FALSE(r.used[11]);
   EXPECT_EQ(std::count(r.used.begin(), r.used.end(), false), 1);
   ASSERT_EQ(r.warnings.size(), 1u);
-  EXPECT_THAT(r.warnings[0], HasSubstr("position 12 (120.0-130.0 s) excluded as an outlier"));
+  EXPECT_THAT(r.warnings[0],
+              HasSubstr("position 12 (120.0-130.0 s) excluded as an outlier"));
   // Back to an estimate consistent with its own 1σ.
   const Eigen::Matrix<double, 9, 1> z =
       (ToVector(r.estimate) - ToVector(ConsumerGrade())).cwiseQuotient(ToVector(r.std));
@@ -211,8 +218,8 @@ TEST(Solve, ExcludesABumpedPositionAndNamesIt) {
 TEST(Solve, KeepsEveryPositionOfACleanSession) {
   std::mt19937_64 rng(9);
   for (int s = 0; s < 20; ++s) {
-    const auto session =
-        MakeSession(ConsumerGrade(), Tilted(CubeDirections(), 0.1, rng), kNoise, kSamples, rng);
+    const auto session = MakeSession(
+        ConsumerGrade(), Tilted(CubeDirections(), 0.1, rng), kNoise, kSamples, rng);
     const SolveResult r = Solve(session.positions, SolveOptions{});
     EXPECT_EQ(std::count(r.used.begin(), r.used.end(), false), 0);
   }
@@ -245,8 +252,8 @@ TEST(Solve, CrossValidationResidualsExceedTheFittedOnes) {
   // A position left out of the fit cannot pull it: its predicted residual is
   // larger, by about 1/(1 − leverage) ≈ K/(K − 9) on average.
   std::mt19937_64 rng(12);
-  const auto session =
-      MakeSession(ConsumerGrade(), Tilted(CubeDirections(), 0.1, rng), kNoise, kSamples, rng);
+  const auto session = MakeSession(
+      ConsumerGrade(), Tilted(CubeDirections(), 0.1, rng), kNoise, kSamples, rng);
   const SolveResult r = Solve(session.positions, SolveOptions{});
   ASSERT_EQ(r.cross_validation_residual_mps2.size(), session.positions.size());
   const double ratio = r.cross_validation_rms_mps2 / r.residual_rms_after_mps2;

@@ -87,7 +87,8 @@ TEST(SplitHalf, ABiasThatJumpsBetweenTheHalvesWidensThe1Sigma) {
   // The estimate is the same; every 1σ is widened by the factor.
   EXPECT_NEAR(with.estimate.bias_mps2.x(), without.estimate.bias_mps2.x(), 1e-12);
   // A named vector, not `auto`: an Eigen expression would outlive its operands.
-  const Eigen::Matrix<double, 9, 1> ratio = ToVector(with.std).cwiseQuotient(ToVector(without.std));
+  const Eigen::Matrix<double, 9, 1> ratio =
+      ToVector(with.std).cwiseQuotient(ToVector(without.std));
   for (int i = 0; i < 9; ++i) EXPECT_NEAR(ratio[i], widening, 1e-9 * widening);
   ASSERT_FALSE(with.warnings.empty());
   EXPECT_NE(with.warnings.back().find("widened"), std::string::npos);

@@ -22,12 +22,14 @@ inline std::vector<Eigen::Vector3d> CubeDirections() {
   for (int x = -1; x <= 1; ++x)
     for (int y = -1; y <= 1; ++y)
       for (int z = -1; z <= 1; ++z)
-        if (x != 0 || y != 0 || z != 0) d.push_back(Eigen::Vector3d(x, y, z).normalized());
+        if (x != 0 || y != 0 || z != 0)
+          d.push_back(Eigen::Vector3d(x, y, z).normalized());
   return d;
 }
 
 /// Each direction tilted by a random rotation of up to `tilt_rad`.
-inline std::vector<Eigen::Vector3d> Tilted(std::vector<Eigen::Vector3d> d, double tilt_rad,
+inline std::vector<Eigen::Vector3d> Tilted(std::vector<Eigen::Vector3d> d,
+                                           double tilt_rad,
                                            std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (auto& v : d) {
@@ -45,7 +47,8 @@ struct SyntheticSession {
 /// Means of `samples` samples with white noise `noise_mps2` per axis.
 inline SyntheticSession MakeSession(const ErrorModel& truth,
                                     const std::vector<Eigen::Vector3d>& directions,
-                                    const Eigen::Vector3d& noise_mps2, std::size_t samples,
+                                    const Eigen::Vector3d& noise_mps2,
+                                    std::size_t samples,
                                     std::mt19937_64& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
   SyntheticSession s;
@@ -56,9 +59,8 @@ inline SyntheticSession MakeSession(const ErrorModel& truth,
                   Eigen::Vector3d(n(rng), n(rng), n(rng)).cwiseProduct(noise_mps2) * sd;
     // The sample std of n samples scatters by 1/sqrt(2n) around σ.
     const double spread = 1.0 / std::sqrt(2.0 * static_cast<double>(samples));
-    p.sample_std_mps2 =
-        noise_mps2.cwiseProduct(Eigen::Vector3d::Ones() +
-                                spread * Eigen::Vector3d(n(rng), n(rng), n(rng)));
+    p.sample_std_mps2 = noise_mps2.cwiseProduct(
+        Eigen::Vector3d::Ones() + spread * Eigen::Vector3d(n(rng), n(rng), n(rng)));
     p.samples = samples;
     s.positions.push_back(p);
     s.bound_positions.push_back({u, noise_mps2, samples});

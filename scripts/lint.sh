@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# The habits CI keeps (.ci/run), each a one-line verdict:
+#   1. every C++ file is clang-format clean (.clang-format);
+#   2. no file in src/ is over 600 lines;
+#   3. clang-tidy (.clang-tidy: bugprone-*, performance-*, functions of
+#      cognitive complexity <= 40 and <= 80 lines) is clean on src/ and apps/.
+# usage: scripts/lint.sh [BUILD_DIR]   (BUILD_DIR holds compile_commands.json)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build}
+status=0
+
+mapfile -t cxx < <(git ls-files '*.cc' '*.h')
+if ! clang-format --dry-run -Werror "${cxx[@]}" 2>/tmp/mpcal-format.$$; then
+  grep -o '^[^:]*' /tmp/mpcal-format.$$ | sort -u | sed 's/^/  not formatted: /'
+  echo "lint: the files above are not clang-format clean; run: clang-format -i FILE" >&2
+  status=1
+fi
+rm -f /tmp/mpcal-format.$$
+
+while read -r lines file; do
+  if [[ $file != total && $lines -gt 600 ]]; then
+    echo "lint: $file has $lines lines (at most 600: split it by concern)" >&2
+    status=1
+  fi
+done < <(git ls-files 'src/*.cc' 'src/*.h' | xargs wc -l)
+
+if [[ ! -f $build/compile_commands.json ]]; then
+  echo "lint: $build/compile_commands.json is missing; configure with cmake first" >&2
+  exit 1
+fi
+mapfile -t sources < <(git ls-files 'src/*.cc' 'apps/*.cc')
+if ! run-clang-tidy -quiet -p "$build" -j "$(nproc)" "${sources[@]/#/$PWD/}" \
+    >/tmp/mpcal-tidy.$$ 2>&1; then
+  grep -E 'warning:|error:' /tmp/mpcal-tidy.$$ | sort -u >&2 || cat /tmp/mpcal-tidy.$$ >&2
+  echo "lint: clang-tidy found the problems above" >&2
+  status=1
+fi
+rm -f /tmp/mpcal-tidy.$$
+[[ $status == 0 ]] && echo "lint: clang-format, file sizes and clang-tidy clean (${#cxx[@]} files formatted, ${#sources[@]} tidied)"
+exit $status
