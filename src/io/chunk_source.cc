@@ -1,0 +1,373 @@
+#include "chunk_source.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <system_error>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "mpcal/error.h"
+
+namespace mpcal::logio {
+
+void ThrowLineTooLong(const std::string& source, std::size_t line) {
+  throw Error(ErrorKind::kInput,
+              fmt::format("{}:{}: line longer than {} KiB: this does not look like a "
+                          "text log",
+                          source,
+                          line,
+                          kMaxLineBytes / 1024));
+}
+
+LogFile::LogFile(const std::string& path) {
+  if (path == "-") {
+    source_ = "<stdin>";
+    fd_ = STDIN_FILENO;
+    return;
+  }
+  source_ = path;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) {
+    const int err = errno;
+    throw Error(ErrorKind::kIo,
+                fmt::format("cannot read log '{}': {}{}",
+                            path,
+                            std::strerror(err),
+                            err == ENOENT ? " (check the path)" : ""));
+  }
+  if (S_ISDIR(st.st_mode)) {
+    throw Error(ErrorKind::kIo,
+                fmt::format("'{}' is a directory; give the path of a log file", path));
+  }
+  fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd_ < 0) {
+    throw Error(ErrorKind::kIo,
+                fmt::format("cannot read log '{}': {}", path, std::strerror(errno)));
+  }
+  owns_fd_ = true;
+  if (S_ISREG(st.st_mode)) {
+    size_ = static_cast<std::uint64_t>(st.st_size);
+#ifdef POSIX_FADV_SEQUENTIAL
+    ::posix_fadvise(fd_, 0, 0, POSIX_FADV_SEQUENTIAL);
+#endif
+  }
+}
+
+LogFile::~LogFile() {
+  if (owns_fd_ && fd_ >= 0) ::close(fd_);
+}
+
+std::size_t LogFile::Read(char* dst, std::size_t n, bool fill, std::string* error) {
+  std::size_t got = 0;
+  while (!eof_ && got < n) {
+    const ssize_t r = ::read(fd_, dst + got, n - got);
+    if (r < 0) {
+      if (errno == EINTR) continue;
+      *error = fmt::format("error reading '{}': {}", source_, std::strerror(errno));
+      break;
+    }
+    if (r == 0) {
+      eof_ = true;
+      break;
+    }
+    got += static_cast<std::size_t>(r);
+    if (!fill) break;
+  }
+  return got;
+}
+
+// ---------------------------------------------------------------------------
+
+LineReader::LineReader(LogFile* file) : file_(file), buf_(kChunkBytes) { Refill(true); }
+
+std::string_view LineReader::head() const {
+  return {buf_.data() + begin_, end_ - begin_};
+}
+
+void LineReader::Skip(std::size_t n) {
+  begin_ += n;
+  consumed_ += n;
+}
+
+// Reads more input after the unconsumed bytes.
+void LineReader::Refill(bool fill) {
+  if (begin_ > 0) {
+    std::memmove(buf_.data(), buf_.data() + begin_, end_ - begin_);
+    end_ -= begin_;
+    begin_ = 0;
+  }
+  if (end_ == buf_.size()) buf_.resize(buf_.size() * 2);
+  std::string error;
+  const std::size_t n = file_->Read(buf_.data() + end_, buf_.size() - end_, fill, &error);
+  end_ += n;
+  bytes_read_ += n;
+  if (!error.empty()) throw Error(ErrorKind::kIo, error);
+}
+
+bool LineReader::Next(std::string_view* text, std::string_view* eol) {
+  while (true) {
+    const char* start = buf_.data() + begin_;
+    const auto* nl = static_cast<const char*>(std::memchr(start, '\n', end_ - begin_));
+    if (nl != nullptr || (file_->eof() && begin_ < end_)) {
+      const std::size_t len =
+          nl != nullptr ? static_cast<std::size_t>(nl - start) : end_ - begin_;
+      const char* line_end = start + len;
+      const bool cr = len > 0 && line_end[-1] == '\r';
+      *text = std::string_view(start, cr ? len - 1 : len);
+      if (nl != nullptr) {
+        *eol = std::string_view(cr ? nl - 1 : nl, cr ? 2 : 1);
+      } else {
+        *eol = cr ? std::string_view(line_end - 1, 1) : std::string_view();
+      }
+      const std::size_t taken = nl != nullptr ? len + 1 : len;
+      begin_ += taken;
+      consumed_ += taken;
+      ++line_number_;
+      return true;
+    }
+    if (file_->eof()) return false;
+    if (end_ - begin_ >= kMaxLineBytes) ThrowLineTooLong(file_->source(), line_number_ + 1);
+    Refill(false);
+  }
+}
+
+// ---------------------------------------------------------------------------
+
+struct ChunkPipeline::Slot {
+  enum class State { kFree, kBusy, kParsed };
+  State state = State::kFree;
+  std::size_t sequence = 0;
+  // Whole lines (the input's last line may lack its end); `size` bytes used.
+  std::unique_ptr<char[]> bytes;
+  std::size_t capacity = 0;
+  std::size_t size = 0;
+  ChunkRows rows;
+  std::exception_ptr error;  // from reading or parsing (out of memory)
+
+  // Room for `n` bytes, keeping the first `keep`.
+  void Reserve(std::size_t n, std::size_t keep) {
+    if (capacity >= n) return;
+    auto grown = std::make_unique_for_overwrite<char[]>(n);
+    if (keep > 0) std::memcpy(grown.get(), bytes.get(), keep);
+    bytes = std::move(grown);
+    capacity = n;
+  }
+};
+
+ChunkPipeline::ChunkPipeline(LogFile* file,
+                             std::string_view first_bytes,
+                             RowConversion conversion)
+    : file_(file), conversion_(conversion), carry_(first_bytes.begin(), first_bytes.end()) {
+  for (auto& slot : slots_) slot = std::make_unique<Slot>();
+  try {
+    helper_ = std::thread([this] {
+      while (Slot* c = Claim(/*wait=*/true)) Parse(c);
+    });
+  } catch (const std::system_error&) {
+    // No second thread: the calling thread does it all.
+  }
+}
+
+ChunkPipeline::~ChunkPipeline() { Stop(); }
+
+void ChunkPipeline::Stop() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  ready_.notify_all();
+  if (helper_.joinable()) helper_.join();
+}
+
+bool ChunkPipeline::NextReady() const {
+  const Slot& next = *slots_[merged_ % kChunksInFlight];
+  return next.state == Slot::State::kParsed && next.sequence == merged_;
+}
+
+const ChunkRows* ChunkPipeline::Next() {
+  while (true) {
+    {
+      std::unique_lock lock(mutex_);
+      if (NextReady()) {
+        Slot& next = *slots_[merged_ % kChunksInFlight];
+        if (next.error) std::rethrow_exception(next.error);
+        return &next.rows;
+      }
+      if (input_done_ && merged_ == claimed_) return nullptr;
+    }
+    if (Slot* c = Claim(/*wait=*/false)) {
+      Parse(c);
+      continue;
+    }
+    std::unique_lock lock(mutex_);
+    ready_.wait(lock, [&] {
+      return NextReady() || (input_done_ && merged_ == claimed_) ||
+             (!helper_.joinable() && !input_done_);
+    });
+  }
+}
+
+void ChunkPipeline::Release() {
+  {
+    std::lock_guard lock(mutex_);
+    Slot& c = *slots_[merged_ % kChunksInFlight];
+    consumed_ += c.size;
+    c.state = Slot::State::kFree;
+    ++merged_;
+  }
+  ready_.notify_all();
+}
+
+// Claims the next chunk in file order and reads it; nullptr when the input
+// has ended, or when there is no free slot and `wait` is false.
+ChunkPipeline::Slot* ChunkPipeline::Claim(bool wait) {
+  std::unique_lock read_lock(read_mutex_, std::defer_lock);
+  if (wait) {
+    read_lock.lock();
+  } else if (!read_lock.try_lock()) {
+    return nullptr;
+  }
+  Slot* c = nullptr;
+  {
+    std::unique_lock lock(mutex_);
+    auto free = [&] { return slots_[claimed_ % kChunksInFlight]->state == Slot::State::kFree; };
+    if (wait) ready_.wait(lock, [&] { return stop_ || input_done_ || free(); });
+    if (stop_ || input_done_ || !free()) return nullptr;
+    c = slots_[claimed_ % kChunksInFlight].get();
+    c->state = Slot::State::kBusy;
+    c->sequence = claimed_;
+  }
+  bool got = true;
+  c->error = nullptr;
+  try {
+    got = Read(c);
+  } catch (...) {  // out of memory: reported when this chunk's turn comes
+    c->error = std::current_exception();
+    c->size = 0;
+  }
+  std::lock_guard lock(mutex_);
+  if (!got) {
+    c->state = Slot::State::kFree;
+    input_done_ = true;
+    ready_.notify_all();
+    return nullptr;
+  }
+  ++claimed_;
+  if (!c->rows.read_error.empty() || c->rows.line_too_long || c->error) input_done_ = true;
+  return c;
+}
+
+// Fills `c` with the carried-over bytes and whole lines read after them,
+// about kChunkBytes; false when the input has ended.
+bool ChunkPipeline::Read(Slot* c) {
+  ChunkRows& rows = c->rows;
+  rows.read_error.clear();
+  rows.line_too_long = false;
+  std::size_t size = carry_.size();
+  std::size_t want = std::max(kChunkBytes, size);
+  c->Reserve(want, 0);
+  std::memcpy(c->bytes.get(), carry_.data(), size);
+  carry_.clear();
+  while (true) {
+    size += file_->Read(c->bytes.get() + size, want - size, true, &rows.read_error);
+    if (size == 0 && rows.read_error.empty()) return false;
+    if (file_->eof() && rows.read_error.empty()) break;  // the rest of the input
+    // Cut after the last line end; the rest begins the next chunk. (A read
+    // error comes after the whole lines before it.)
+    const char* const data = c->bytes.get();
+    const auto* nl = static_cast<const char*>(::memrchr(data, '\n', size));
+    if (nl != nullptr) {
+      const std::size_t cut = static_cast<std::size_t>(nl - data) + 1;
+      if (rows.read_error.empty()) carry_.assign(data + cut, data + size);
+      size = cut;
+      break;
+    }
+    if (!rows.read_error.empty()) {
+      size = 0;
+      break;
+    }
+    // One line so far, from the chunk's start (the carry starts a line).
+    if (size >= kMaxLineBytes) {
+      rows.line_too_long = true;
+      size = 0;
+      break;
+    }
+    want = size + kChunkBytes;
+    c->Reserve(want, size);
+  }
+  c->size = size;
+  return true;
+}
+
+void ChunkPipeline::Parse(Slot* c) {
+  try {
+    if (!c->error) ParseLines(c);
+  } catch (...) {
+    c->error = std::current_exception();
+  }
+  {
+    std::lock_guard lock(mutex_);
+    c->state = Slot::State::kParsed;
+  }
+  ready_.notify_all();
+}
+
+// The rows of a chunk's lines, up to the first malformed one (and whether
+// anything but blank lines follows it).
+void ChunkPipeline::ParseLines(Slot* c) const {
+  ChunkRows& out = c->rows;
+  const RowConversion& conv = conversion_;
+  out.bytes = std::string_view(c->bytes.get(), c->size);
+  out.header_line = c->sequence == 0 ? conv.header_line : 0;
+  out.time.clear();
+  out.accel.clear();
+  out.gyro.clear();
+  out.last_row_line = 0;
+  out.first_row_bytes = 0;
+  out.has_content = false;
+  out.failure_line = 0;
+  out.failure.clear();
+  out.failure_fatal = false;
+  const char* p = c->bytes.get();
+  const char* const end = p + c->size;
+  std::size_t line = 0;
+  LogLine row;
+  RowFailure why;
+  while (p < end) {
+    const auto* nl = static_cast<const char*>(std::memchr(p, '\n', end - p));
+    const char* const stop = nl != nullptr ? nl : end;
+    std::string_view text(p, static_cast<std::size_t>(stop - p));
+    if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
+    const char* const line_begin = p;
+    p = nl != nullptr ? nl + 1 : end;
+    ++line;
+    if (out.failure_line > 0) {
+      if (Trim(text).empty()) continue;
+      out.failure_fatal = true;
+      break;
+    }
+    if (!out.has_content) out.has_content = !Trim(text).empty();
+    if (line == out.header_line || IsCommentOrBlank(text)) continue;
+    if (!conv.parser->Parse(text, &row, &why)) {
+      out.failure_line = line;
+      out.failure = conv.parser->Problem(text, why);
+      continue;
+    }
+    if (out.time.empty()) out.first_row_bytes = static_cast<std::size_t>(p - line_begin);
+    out.time.push_back(conv.index_time ? static_cast<double>(out.time.size())
+                                       : row.time_raw * conv.time_scale);
+    out.accel.push_back(row.accel);
+    if (conv.gyro) out.gyro.push_back(row.gyro * conv.gyro_scale);
+    out.last_row_line = line;
+  }
+  // Lines after a fatal failure are not needed (the sink stops there).
+  out.lines = line;
+}
+
+}  // namespace mpcal::logio

@@ -1,0 +1,174 @@
+// The chunk source: a log's bytes from its file descriptor, either line by
+// line (LineReader, for LogScanner) or as chunks of whole lines parsed on two
+// threads (ChunkPipeline, for ReadLog). Private to src/io.
+#pragma once
+
+#include <array>
+#include <condition_variable>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "row_parser.h"
+
+namespace mpcal::logio {
+
+/// A line longer than this means the input is not a log (binary junk, or a
+/// file without line ends).
+inline constexpr std::size_t kMaxLineBytes = std::size_t{1} << 19;
+/// The first bytes read to find the layout, and the size of a chunk: large
+/// enough that read(2) calls and per-chunk bookkeeping vanish next to number
+/// parsing, small enough to stay in cache.
+inline constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
+
+/// "line N: longer than ... KiB" as an Error.
+[[noreturn]] void ThrowLineTooLong(const std::string& source, std::size_t line);
+
+/// An open log: a file (or standard input for "-") and its size.
+class LogFile {
+ public:
+  /// \throws mpcal::Error for a missing or unreadable file or a directory.
+  explicit LogFile(const std::string& path);
+  ~LogFile();
+  LogFile(const LogFile&) = delete;
+  LogFile& operator=(const LogFile&) = delete;
+
+  /// The name used in messages (the path, or "<stdin>").
+  const std::string& source() const { return source_; }
+  /// The size of a regular file; 0 otherwise.
+  std::uint64_t size() const { return size_; }
+  bool eof() const { return eof_; }
+  /// Reads up to `n` bytes into `dst`, or until the input ends when
+  /// `fill` (pipes deliver a little at a time); returns the count. A read
+  /// failure sets `*error` (the bytes before it are returned).
+  std::size_t Read(char* dst, std::size_t n, bool fill, std::string* error);
+
+ private:
+  std::string source_;
+  int fd_ = -1;
+  bool owns_fd_ = false;
+  bool eof_ = false;
+  std::uint64_t size_ = 0;
+};
+
+/// A log's lines in order, from a buffer refilled as they are consumed.
+class LineReader {
+ public:
+  /// Reads the first chunk (see head()).
+  explicit LineReader(LogFile* file);
+
+  /// The unconsumed bytes read so far: after construction, the first chunk.
+  std::string_view head() const;
+  /// Drops the first `n` unread bytes (a byte-order mark), not counted as a line.
+  void Skip(std::size_t n);
+  /// The next line (text without its end, and its end) or false at the end.
+  /// \throws mpcal::Error for a read failure or an overlong line.
+  bool Next(std::string_view* text, std::string_view* eol);
+  std::size_t line_number() const { return line_number_; }
+  /// Bytes consumed so far, and bytes read from the file.
+  std::uint64_t consumed() const { return consumed_; }
+  std::uint64_t bytes_read() const { return bytes_read_; }
+
+ private:
+  void Refill(bool fill);
+
+  LogFile* file_;
+  std::vector<char> buf_;
+  std::size_t begin_ = 0;  // first unconsumed byte
+  std::size_t end_ = 0;    // one past the last byte read
+  std::size_t line_number_ = 0;
+  std::uint64_t consumed_ = 0;
+  std::uint64_t bytes_read_ = 0;
+};
+
+/// The parsed rows of one chunk, handed to the row sink in file order.
+struct ChunkRows {
+  std::string_view bytes;     // the chunk's whole lines
+  std::size_t header_line = 0;  // 1-based within the chunk; 0 for none
+  /// One entry per data line before the first malformed one: time in
+  /// seconds, or the chunk's own row index when the log has no time column.
+  std::vector<double> time;
+  std::vector<Eigen::Vector3d> accel;
+  std::vector<Eigen::Vector3d> gyro;  // in rad/s (or counts), when parsed
+  std::size_t lines = 0;          // lines in the chunk (up to a fatal failure)
+  std::size_t last_row_line = 0;  // 1-based within the chunk
+  std::size_t first_row_bytes = 0;
+  bool has_content = false;      // a line that is not blank
+  std::size_t failure_line = 0;  // first malformed data line, 0 for none
+  std::string failure;           // its problem
+  bool failure_fatal = false;    // something but blank lines follows it
+  bool line_too_long = false;    // reading stopped at a line with no end in sight
+  std::string read_error;        // reading stopped at a read failure
+};
+
+/// What turns a chunk's lines into rows.
+struct RowConversion {
+  const RowParser* parser = nullptr;
+  double time_scale = 1.0;  // seconds per unit of the time column
+  double gyro_scale = 1.0;  // to rad/s
+  bool index_time = false;  // no time column: rows are numbered
+  bool gyro = false;        // gyroscope columns parsed
+  std::size_t header_line = 0;  // within the first chunk; 0 for none
+};
+
+/// ReadLog is bound by turning text into numbers, so it parses on two
+/// cores: the input is cut into chunks of whole lines, read in file order by
+/// whichever thread is free; each is parsed into its own rows; the calling
+/// thread takes the parsed chunks in file order (Next) and hands each back
+/// (Release). Memory: kChunksInFlight chunks at most.
+class ChunkPipeline {
+ public:
+  /// `first_bytes`: what was read before (the layout's head), from where the
+  /// rows start.
+  ChunkPipeline(LogFile* file, std::string_view first_bytes, RowConversion conversion);
+  ~ChunkPipeline();
+  ChunkPipeline(const ChunkPipeline&) = delete;
+  ChunkPipeline& operator=(const ChunkPipeline&) = delete;
+
+  /// The next chunk in file order once parsed; nullptr after the last. The
+  /// calling thread reads and parses chunks too while it waits.
+  /// \throws what parsing threw (out of memory).
+  const ChunkRows* Next();
+  /// Hands back the chunk Next returned.
+  void Release();
+  /// Bytes of the input released so far.
+  std::uint64_t consumed() const { return consumed_; }
+  /// Stops the helper thread (also on destruction).
+  void Stop();
+
+ private:
+  struct Slot;
+  Slot* Claim(bool wait);
+  bool Read(Slot* c);
+  void Parse(Slot* c);
+  void ParseLines(Slot* c) const;
+  void Finish(Slot* c);
+  bool NextReady() const;
+
+  LogFile* file_;
+  RowConversion conversion_;
+  std::thread helper_;
+
+  std::mutex read_mutex_;  // reading: one thread at a time, in file order
+  std::vector<char> carry_;
+  std::uint64_t consumed_ = 0;  // the calling thread's
+
+  mutable std::mutex mutex_;
+  std::condition_variable ready_;
+  static constexpr std::size_t kChunksInFlight = 4;
+  std::array<std::unique_ptr<Slot>, kChunksInFlight> slots_;
+  std::size_t claimed_ = 0;  // chunks read
+  std::size_t merged_ = 0;
+  bool input_done_ = false;
+  bool stop_ = false;
+};
+
+}  // namespace mpcal::logio

@@ -1,0 +1,94 @@
+// The row sink: where parsed rows become a Recording, with the rules every
+// reader of a log keeps in one place: duplicated timestamps dropped and
+// counted, time going back refused (with a hint for a counter that wrapped),
+// a malformed last line dropped with a warning (a logger cut off mid-write)
+// but a malformed line with data after it refused, progress reported, gaps
+// and impossible times found at the end. Private to src/io.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <utility>
+#include <string>
+#include <vector>
+
+#include "chunk_source.h"
+#include "mpcal/recording.h"
+
+namespace mpcal::logio {
+
+/// Reports the fraction of the input done, at most about 100 times, the
+/// last one 1.0; nothing when the size is unknown or there is no callback.
+class ProgressReporter {
+ public:
+  ProgressReporter(std::function<void(double)> report, std::uint64_t total_bytes)
+      : report_(std::move(report)), total_(total_bytes) {}
+  void Update(std::uint64_t done_bytes, bool at_end = false);
+  void Finish();
+
+ private:
+  std::function<void(double)> report_;
+  std::uint64_t total_;
+  double last_ = -1.0;
+};
+
+/// A malformed data line: fatal if anything but blank lines follows it,
+/// else a cut-off last line, dropped with a warning.
+class CutOffLine {
+ public:
+  void Hold(std::size_t line, std::string problem);
+  bool held() const { return line_ > 0; }
+  /// \throws mpcal::Error "SOURCE:LINE: problem".
+  [[noreturn]] void Throw(const std::string& source) const;
+  /// The warning for a held line at the end of the input.
+  std::string Warning(const std::string& source) const;
+
+ private:
+  std::size_t line_ = 0;
+  std::string problem_;
+};
+
+/// Appends the rows of chunks, in file order, to a Recording.
+class RowSink {
+ public:
+  /// `time_scale`: seconds per unit of the time column (for messages and
+  /// numbered rows); `line_base`: lines of the input before the first
+  /// chunk; `total_bytes`: the input's size, 0 if unknown.
+  RowSink(Recording* rec,
+          double time_scale,
+          bool index_time,
+          std::size_t line_base,
+          std::uint64_t total_bytes);
+
+  /// Appends a chunk's rows.
+  /// \throws mpcal::Error for time going back, a malformed line with data
+  ///   after it, an overlong line or a read failure.
+  void Append(const ChunkRows& c);
+
+  /// Checks the whole and adds the warnings (cut-off last line,
+  /// duplicates, gaps). `has_header`: for the message when there are no rows.
+  /// \throws mpcal::Error for no rows or a time beyond any clock.
+  void Finish(bool has_header);
+
+ private:
+  void Reserve(const ChunkRows& c);
+  void AppendRows(const ChunkRows& c);
+  [[noreturn]] void ThrowTimeBack(const ChunkRows& c, std::size_t row, std::size_t kept);
+  std::size_t LineOf(const ChunkRows& c, std::size_t row) const;
+  void WarnGaps();
+
+  Recording* rec_;
+  double time_scale_;
+  bool index_time_;
+  std::size_t line_base_;  // lines before the chunk being appended
+  std::uint64_t total_bytes_;
+  std::size_t rows_before_ = 0;
+  std::size_t duplicates_ = 0;
+  std::size_t first_duplicate_line_ = 0;
+  std::size_t previous_line_ = 0;  // of the last row kept
+  bool reserved_ = false;
+  CutOffLine cut_off_;
+};
+
+}  // namespace mpcal::logio
