@@ -132,7 +132,8 @@ bool LineReader::Next(std::string_view* text, std::string_view* eol) {
       return true;
     }
     if (file_->eof()) return false;
-    if (end_ - begin_ >= kMaxLineBytes) ThrowLineTooLong(file_->source(), line_number_ + 1);
+    if (end_ - begin_ >= kMaxLineBytes)
+      ThrowLineTooLong(file_->source(), line_number_ + 1);
     Refill(false);
   }
 }
@@ -163,7 +164,9 @@ struct ChunkPipeline::Slot {
 ChunkPipeline::ChunkPipeline(LogFile* file,
                              std::string_view first_bytes,
                              RowConversion conversion)
-    : file_(file), conversion_(conversion), carry_(first_bytes.begin(), first_bytes.end()) {
+    : file_(file),
+      conversion_(conversion),
+      carry_(first_bytes.begin(), first_bytes.end()) {
   for (auto& slot : slots_) slot = std::make_unique<Slot>();
   try {
     helper_ = std::thread([this] {
@@ -236,7 +239,9 @@ ChunkPipeline::Slot* ChunkPipeline::Claim(bool wait) {
   Slot* c = nullptr;
   {
     std::unique_lock lock(mutex_);
-    auto free = [&] { return slots_[claimed_ % kChunksInFlight]->state == Slot::State::kFree; };
+    auto free = [&] {
+      return slots_[claimed_ % kChunksInFlight]->state == Slot::State::kFree;
+    };
     if (wait) ready_.wait(lock, [&] { return stop_ || input_done_ || free(); });
     if (stop_ || input_done_ || !free()) return nullptr;
     c = slots_[claimed_ % kChunksInFlight].get();
@@ -259,7 +264,8 @@ ChunkPipeline::Slot* ChunkPipeline::Claim(bool wait) {
     return nullptr;
   }
   ++claimed_;
-  if (!c->rows.read_error.empty() || c->rows.line_too_long || c->error) input_done_ = true;
+  if (!c->rows.read_error.empty() || c->rows.line_too_long || c->error)
+    input_done_ = true;
   return c;
 }
 

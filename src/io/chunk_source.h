@@ -91,15 +91,15 @@ class LineReader {
 
 /// The parsed rows of one chunk, handed to the row sink in file order.
 struct ChunkRows {
-  std::string_view bytes;     // the chunk's whole lines
+  std::string_view bytes;       // the chunk's whole lines
   std::size_t header_line = 0;  // 1-based within the chunk; 0 for none
   /// One entry per data line before the first malformed one: time in
   /// seconds, or the chunk's own row index when the log has no time column.
   std::vector<double> time;
   std::vector<Eigen::Vector3d> accel;
   std::vector<Eigen::Vector3d> gyro;  // in rad/s (or counts), when parsed
-  std::size_t lines = 0;          // lines in the chunk (up to a fatal failure)
-  std::size_t last_row_line = 0;  // 1-based within the chunk
+  std::size_t lines = 0;              // lines in the chunk (up to a fatal failure)
+  std::size_t last_row_line = 0;      // 1-based within the chunk
   std::size_t first_row_bytes = 0;
   bool has_content = false;      // a line that is not blank
   std::size_t failure_line = 0;  // first malformed data line, 0 for none
@@ -112,10 +112,10 @@ struct ChunkRows {
 /// What turns a chunk's lines into rows.
 struct RowConversion {
   const RowParser* parser = nullptr;
-  double time_scale = 1.0;  // seconds per unit of the time column
-  double gyro_scale = 1.0;  // to rad/s
-  bool index_time = false;  // no time column: rows are numbered
-  bool gyro = false;        // gyroscope columns parsed
+  double time_scale = 1.0;      // seconds per unit of the time column
+  double gyro_scale = 1.0;      // to rad/s
+  bool index_time = false;      // no time column: rows are numbered
+  bool gyro = false;            // gyroscope columns parsed
   std::size_t header_line = 0;  // within the first chunk; 0 for none
 };
 

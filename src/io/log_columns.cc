@@ -207,14 +207,14 @@ std::string ParseColumnSpec(const std::string& spec, std::vector<ColumnSpec>* ou
   return "";
 }
 
-
 namespace {
 
 using ColumnOfRole = std::array<int, 8>;
 
 std::string InHeader(const LogLayout& layout) {
-  return layout.header_line > 0 ? fmt::format(" in the header (line {})", layout.header_line)
-                                : "";
+  return layout.header_line > 0
+             ? fmt::format(" in the header (line {})", layout.header_line)
+             : "";
 }
 
 // The index of the header column `spec` names: exact (any case) first, then
@@ -266,7 +266,8 @@ void MapFromHeader(const std::string& source,
   if ((*column)[kTime] < 0 && sample_index_column >= 0) {
     (*column)[kTime] = sample_index_column;
     layout->time_column = sample_index_column;
-    if (options->time_unit == TimeUnit::kAuto) options->time_unit = TimeUnit::kSampleIndex;
+    if (options->time_unit == TimeUnit::kAuto)
+      options->time_unit = TimeUnit::kSampleIndex;
     if (options->time_unit == TimeUnit::kSampleIndex && options->rate_hz <= 0.0) {
       throw Error(ErrorKind::kTime,
                   fmt::format("'{}': column '{}' counts samples rather than time: give "
@@ -297,13 +298,14 @@ void MapWithoutHeader(const std::string& source,
                       ColumnOfRole* column) {
   for (const auto& spec : specs) {
     if (spec.index < 0) {
-      throw Error(ErrorKind::kColumns,
-                  fmt::format("columns {}={}: the log '{}' has no header line "
-                              "naming its columns; give 0-based column indices instead",
-                              kRoleKeys[spec.role],
-                              spec.name,
-                              source),
-                  Give({{Option::kLogColumns, fmt::format("{}=1", kRoleKeys[spec.role])}}));
+      throw Error(
+          ErrorKind::kColumns,
+          fmt::format("columns {}={}: the log '{}' has no header line "
+                      "naming its columns; give 0-based column indices instead",
+                      kRoleKeys[spec.role],
+                      spec.name,
+                      source),
+          Give({{Option::kLogColumns, fmt::format("{}=1", kRoleKeys[spec.role])}}));
     }
     (*column)[spec.role] = spec.index;
   }
@@ -372,9 +374,8 @@ void ResolveColumns(const std::string& source,
   std::vector<ColumnSpec> specs;
   const std::string problem = ParseColumnSpec(options->columns, &specs);
   if (!problem.empty()) {
-    throw Error(ErrorKind::kOption,
-                "columns: " + problem,
-                Give({{Option::kLogColumns, ""}}));
+    throw Error(
+        ErrorKind::kOption, "columns: " + problem, Give({{Option::kLogColumns, ""}}));
   }
   ColumnOfRole column;
   column.fill(-1);

@@ -301,11 +301,12 @@ std::size_t Sniffer::FindHeader(const std::vector<Sniffed>& lines) {
   }
   if (lines.size() == 1) {
     if (eof_) {
-      throw Error(ErrorKind::kInput,
-                  fmt::format("'{}' has a header (line {}: '{}') but no data rows after it",
-                              source_,
-                              lines[0].line,
-                              Printable(lines[0].text, 60)));
+      throw Error(
+          ErrorKind::kInput,
+          fmt::format("'{}' has a header (line {}: '{}') but no data rows after it",
+                      source_,
+                      lines[0].line,
+                      Printable(lines[0].text, 60)));
     }
   } else if (const auto second_text = text_fields(lines[1].text);
              second_text.size() >= first_text.size()) {
@@ -472,10 +473,10 @@ DetectedLayout Sniffer::Run(bool parse_gyro) {
                               "rows of numbers (t, ax, ay, az)",
                               source_));
     }
-    throw Error(ErrorKind::kInput,
-                fmt::format("'{}': no data line in its first {} KiB",
-                            source_,
-                            head_.size() / 1024));
+    throw Error(
+        ErrorKind::kInput,
+        fmt::format(
+            "'{}': no data line in its first {} KiB", source_, head_.size() / 1024));
   }
   FindSeparators(lines);
   const std::size_t first_data = FindHeader(lines);

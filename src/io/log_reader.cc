@@ -188,8 +188,11 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
   std::string read_error;
   head.resize(file.Read(head.data(), head.size(), /*fill=*/true, &read_error));
   if (!read_error.empty()) throw Error(ErrorKind::kIo, read_error);
-  const logio::DetectedLayout detected = logio::DetectLayout(
-      {head.data(), head.size()}, file.eof(), file.source(), options, /*parse_gyro=*/true);
+  const logio::DetectedLayout detected = logio::DetectLayout({head.data(), head.size()},
+                                                             file.eof(),
+                                                             file.source(),
+                                                             options,
+                                                             /*parse_gyro=*/true);
   const LogLayout& layout = detected.layout;
   const logio::RowParser parser(layout, detected.roles, options.units);
 

@@ -50,8 +50,8 @@ const char* RowParser::ParseField(const char* p,
     if (after == stop || *after != quote) return bad();
     ++field_end;
   }
-  const bool at_end = field_end == stop || IsBlank(*field_end) ||
-                      (!blanks && *field_end == delimiter);
+  const bool at_end =
+      field_end == stop || IsBlank(*field_end) || (!blanks && *field_end == delimiter);
   if (result.ec != std::errc() || !at_end || (p != *number_begin && *p == '-')) {
     return bad();
   }
@@ -146,11 +146,13 @@ std::string RowParser::BadNumber(std::string_view text,
                                  const char* field_begin) const {
   const char* const stop = text.data() + text.size();
   const char* e = field_begin;
-  while (e < stop && !(layout_.delimiter == ' ' ? IsBlank(*e) : *e == layout_.delimiter)) {
+  while (e < stop &&
+         !(layout_.delimiter == ' ' ? IsBlank(*e) : *e == layout_.delimiter)) {
     ++e;
   }
   const std::string_view field = Trim(std::string_view(field_begin, e - field_begin));
-  if (field.empty()) return fmt::format("{} is empty; expected a number", ColumnLabel(column));
+  if (field.empty())
+    return fmt::format("{} is empty; expected a number", ColumnLabel(column));
   return fmt::format(
       "expected a number in {}, found '{}'", ColumnLabel(column), Printable(field));
 }

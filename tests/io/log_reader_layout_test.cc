@@ -85,8 +85,9 @@ TEST(LogLayout, ByteOrderMarkIsNotData) {
 }
 
 TEST(LogLayout, FailuresCarryTheOptionThatWouldFixThem) {
-  const Error counter = DetectFailure("t,ax,ay,az\n0,0,0,1\n1,0,0,1\n2,0,0,1\n3,0,0,1\n"
-                                      "4,0,0,1\n5,0,0,1\n6,0,0,1\n7,0,0,1\n8,0,0,1\n");
+  const Error counter = DetectFailure(
+      "t,ax,ay,az\n0,0,0,1\n1,0,0,1\n2,0,0,1\n3,0,0,1\n"
+      "4,0,0,1\n5,0,0,1\n6,0,0,1\n7,0,0,1\n8,0,0,1\n");
   EXPECT_EQ(counter.kind(), ErrorKind::kTime);
   EXPECT_THAT(counter.what(), HasSubstr("steps by exactly 1"));
   ASSERT_FALSE(counter.advice().settings.empty());

@@ -71,8 +71,7 @@ TEST(RowParser, RefusesWithTheReason) {
               HasSubstr("non-finite value 'nan' in column 'ay'"));
   EXPECT_THAT(ParseRow(kHead, "0.5,1,1e300,3").problem,
               HasSubstr("beyond any accelerometer's range"));
-  EXPECT_THAT(ParseRow(kHead, "0.5,1,+-2,3").problem,
-              HasSubstr("found '+-2'"));
+  EXPECT_THAT(ParseRow(kHead, "0.5,1,+-2,3").problem, HasSubstr("found '+-2'"));
   EXPECT_THAT(ParseRow(kHead, "0.5,1,2 x,3").problem, HasSubstr("found '2 x'"));
 }
 

@@ -48,8 +48,9 @@ TEST(RowSink, DuplicatesAreDroppedAndCountedAcrossChunks) {
   ASSERT_EQ(rec.accel.size(), 4u);
   ASSERT_EQ(rec.warnings.size(), 1u);
   // Line 1 is the header: the first duplicate is the third row, line 4.
-  EXPECT_THAT(rec.warnings[0], HasSubstr("2 rows with a duplicated timestamp dropped "
-                                         "(first on line 4)"));
+  EXPECT_THAT(rec.warnings[0],
+              HasSubstr("2 rows with a duplicated timestamp dropped "
+                        "(first on line 4)"));
 }
 
 TEST(RowSink, TimeGoingBackIsRefusedWithBothLines) {
