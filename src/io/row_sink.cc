@@ -162,9 +162,9 @@ void RowSink::AppendRows(const ChunkRows& c) {
   const std::size_t rows = c.time.size();
   std::vector<double> numbered;
   if (index_time_) {
-    numbered.resize(rows);
+    numbered.reserve(rows);
     for (std::size_t j = 0; j < rows; ++j) {
-      numbered[j] = static_cast<double>(rows_before_ + j) * time_scale_;
+      numbered.push_back(static_cast<double>(rows_before_ + j) * time_scale_);
     }
   }
   const std::vector<double>& time = index_time_ ? numbered : c.time;
