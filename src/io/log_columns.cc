@@ -270,22 +270,24 @@ void MapFromHeader(const std::string& source,
       options->time_unit = TimeUnit::kSampleIndex;
     if (options->time_unit == TimeUnit::kSampleIndex && options->rate_hz <= 0.0) {
       throw Error(ErrorKind::kTime,
-                  fmt::format("'{}': column '{}' counts samples rather than time: give "
-                              "the sample rate (or its time unit, if it holds seconds)",
+                  fmt::format("'{}': column '{}' counts samples rather than time, so "
+                              "the sample rate is needed (or the time unit, if it holds "
+                              "seconds)",
                               source,
                               layout->column_names[sample_index_column]),
                   Give({{Option::kLogRate, ""}, {Option::kLogTimeUnit, "s"}}));
     }
   }
   if ((*column)[kAx] < 0 && (*column)[kAy] < 0 && (*column)[kAz] < 0) {
-    throw Error(ErrorKind::kColumns,
-                fmt::format("{}:{}: the header names no accelerometer columns (found: "
-                            "{}); expected ax/acc_x/accel_x/accX (and y, z), or say "
-                            "which columns they are",
-                            source,
-                            layout->header_line,
-                            fmt::join(layout->column_names, ", ")),
-                Give({{Option::kLogColumns, "t=NAME,ax=NAME,ay=NAME,az=NAME"}}));
+    throw Error(
+        ErrorKind::kColumns,
+        fmt::format("{}:{}: the header names no accelerometer columns (found: "
+                    "{}); expected ax/acc_x/accel_x/accX (and y, z), or a mapping "
+                    "of the columns",
+                    source,
+                    layout->header_line,
+                    fmt::join(layout->column_names, ", ")),
+        Give({{Option::kLogColumns, "t=NAME,ax=NAME,ay=NAME,az=NAME"}}));
   }
 }
 
@@ -301,7 +303,7 @@ void MapWithoutHeader(const std::string& source,
       throw Error(
           ErrorKind::kColumns,
           fmt::format("columns {}={}: the log '{}' has no header line "
-                      "naming its columns; give 0-based column indices instead",
+                      "naming its columns, so the mapping needs 0-based column indices",
                       kRoleKeys[spec.role],
                       spec.name,
                       source),
@@ -338,12 +340,13 @@ void CheckMapping(const std::string& source,
   }
   const int gyros = (column[kGx] >= 0) + (column[kGy] >= 0) + (column[kGz] >= 0);
   if (gyros != 0 && gyros != 3) {
-    throw Error(ErrorKind::kColumns,
-                fmt::format("'{}': found {} of the 3 gyroscope columns; give all of gx, "
-                            "gy, gz",
-                            source,
-                            gyros),
-                Give({{Option::kLogColumns, "gx=NAME,gy=NAME,gz=NAME"}}));
+    throw Error(
+        ErrorKind::kColumns,
+        fmt::format("'{}': found {} of the 3 gyroscope columns; all of gx, gy, gz "
+                    "are needed",
+                    source,
+                    gyros),
+        Give({{Option::kLogColumns, "gx=NAME,gy=NAME,gz=NAME"}}));
   }
   for (int r = kTime; r <= kGz; ++r) {
     for (int q = r + 1; q <= kGz; ++q) {

@@ -353,8 +353,8 @@ TimeUnit Sniffer::GuessIntegerUnit(const std::vector<std::string_view>& time_fie
     // milliseconds: read as ms it would blame the hold times.
     throw Error(ErrorKind::kTime,
                 fmt::format("'{}': column '{}' steps by exactly 1 on every row: it is a "
-                            "sample index, not a time; give the sample rate in Hz (or "
-                            "its time unit, if it holds milliseconds at 1 kHz)",
+                            "sample index, not a time: the sample rate is needed (or "
+                            "the time unit, if it holds milliseconds at 1 kHz)",
                             source_,
                             layout.column_names[layout.time_column]),
                 Give({{Option::kLogRate, ""}, {Option::kLogTimeUnit, "ms"}}));
@@ -415,8 +415,9 @@ void Sniffer::FindTimeUnit(const std::vector<Sniffed>& lines, std::size_t first_
       if (options_.rate_hz <= 0.0) {
         throw Error(
             ErrorKind::kTime,
-            fmt::format("'{}': the time column is a sample index: give the sample rate",
-                        source_),
+            fmt::format(
+                "'{}': the time column is a sample index, so the sample rate is needed",
+                source_),
             Give({{Option::kLogRate, ""}}));
       }
       layout.seconds_per_time_unit = 1.0 / options_.rate_hz;
