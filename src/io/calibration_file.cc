@@ -14,10 +14,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "gyro_calibration_json.h"
+#include "io/gyro_calibration_json.h"
+#include "io/json_reader.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/error.h"
-#include "mpcal/json_reader.h"
 #include "mpcal/log_reader.h"
 #include "mpcal/plausible.h"
 #include "mpcal/text_input.h"
@@ -279,7 +279,7 @@ std::string CalibrationToJson(const Calibration& c) {
 }
 
 Calibration CalibrationFromJson(const std::string& text, const std::string& origin) {
-  const JsonReader r(fmt::format("calibration file '{}'", origin), "mpcal calibrate");
+  const JsonReader r(fmt::format("calibration file '{}'", origin), Stage::kCalibrate);
   const json j = r.Parse(text);
   // mpcal.imu/1 is mpcal.accelerometer/1 plus a `gyroscope` block.
   const bool imu = j.is_object() && j.contains("format") && j["format"].is_string() &&
@@ -459,9 +459,8 @@ Calibration ReadCalibrationFile(const std::string& path) {
   std::error_code ec;
   if (path != "-" && std::filesystem::is_directory(path, ec)) {
     throw Error(
-        fmt::format("calibration file '{}' is a directory; give the JSON file written "
-                    "by 'mpcal calibrate'",
-                    path));
+        ErrorKind::kIo,
+        fmt::format("calibration file '{}' is a directory; give the JSON file", path));
   }
   // Checked before it is read to the end: /dev/zero or a video named by
   // mistake is refused at once.

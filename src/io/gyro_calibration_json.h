@@ -5,7 +5,7 @@
 #include <string_view>
 
 #include "mpcal/gyro_calibration.h"
-#include "mpcal/json_reader.h"
+#include "io/json_reader.h"
 
 namespace mpcal::internal {
 
