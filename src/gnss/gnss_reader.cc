@@ -51,7 +51,7 @@ GnssFormat DetectFormat(const std::string& text, const std::string& origin) {
   throw Error(ErrorKind::kFormat,
               fmt::format("{}: cannot tell the format of the reference (not an RTKLIB "
                           ".pos with its '%' header, not NMEA '$..GGA' sentences, not a "
-                          "CSV with a t,lat,lon,h or t,e,n,u header); name its format",
+                          "CSV with a t,lat,lon,h or t,e,n,u header)",
                           origin),
               std::move(advice));
 }
