@@ -4,8 +4,8 @@
 
 #include <string_view>
 
-#include "mpcal/gyro_calibration.h"
 #include "io/json_reader.h"
+#include "mpcal/gyro_calibration.h"
 
 namespace mpcal::internal {
 
