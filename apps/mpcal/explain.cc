@@ -105,6 +105,13 @@ std::string ExplainAdvice(const Advice& advice) {
 }
 
 std::string Explain(const Error& error) {
+  // A file of another kind than expected: name the command that writes it.
+  if (error.kind() == ErrorKind::kFormat && error.advice().settings.empty() &&
+      error.advice().stage != Stage::kNone) {
+    return fmt::format("{}; expected JSON written by 'mpcal {}'",
+                       error.what(),
+                       SubcommandName(error.advice().stage));
+  }
   const std::string advice = ExplainAdvice(error.advice());
   if (advice.empty()) return error.what();
   return fmt::format("{}; {}", error.what(), advice);

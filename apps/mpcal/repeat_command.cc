@@ -25,6 +25,7 @@
 #include "mpcal/error.h"
 #include "mpcal/log_reader.h"
 #include "mpcal/repeat.h"
+#include "mpcal/repeatability_file.h"
 #include "progress.h"
 
 namespace mpcal::cli {

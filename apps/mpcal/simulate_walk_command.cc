@@ -72,7 +72,8 @@ void RunSimulateWalk(const SimulateWalkFlags& f) {
   try {
     WriteRecordingFile(f.output, walk.recording);
     written.push_back(f.output);
-    WriteFileAtomically(f.gnss, FormatRtklibPos(walk.gnss, TimeSystem::kGpst));
+    WriteFileAtomically(
+        f.gnss, FormatRtklibPos(walk.gnss, TimeSystem::kGpst, "mpcal simulate walk"));
     written.push_back(f.gnss);
     if (!f.truth.empty()) {
       WriteCalibrationFile(f.truth, walk.truth);

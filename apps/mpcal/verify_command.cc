@@ -22,6 +22,7 @@
 #include "mpcal/gnss.h"
 #include "mpcal/gravity.h"
 #include "mpcal/log_reader.h"
+#include "mpcal/verification_file.h"
 #include "mpcal/verify.h"
 #include "progress.h"
 

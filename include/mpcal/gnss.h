@@ -116,7 +116,9 @@ struct PosEpoch {
 /// with millisecond resolution, header in the layout RTKLIB's rnx2rtkp
 /// writes) that ParseGnss reads back.
 /// \param time_system kGpst or kUtc (kUnknown is written as GPST).
+/// \param program written on the header's "% program" line.
 std::string FormatRtklibPos(const std::vector<PosEpoch>& epochs,
-                            TimeSystem time_system = TimeSystem::kGpst);
+                            TimeSystem time_system = TimeSystem::kGpst,
+                            std::string_view program = "mpcal");
 
 }  // namespace mpcal

@@ -21,7 +21,8 @@
 ///
 /// Everything is SI, as in the calibration file: bias in m/s², scale-factor
 /// error dimensionless, angles in rad. The paper's units (g, ppm) appear only
-/// in FormatRepeatabilityTable.
+/// in FormatRepeatabilityTable. The table's files (JSON, CSV) are read and
+/// written in mpcal/repeatability_file.h.
 #pragma once
 
 #include <array>
@@ -35,9 +36,6 @@
 #include "mpcal/units.h"
 
 namespace mpcal {
-
-/// The format tag of the repeatability JSON this version writes.
-inline constexpr const char* kRepeatabilityFormat = "mpcal.repeatability/1";
 
 struct RepeatabilityOptions {
   /// Significance level of the chi-square test: a parameter is flagged as
@@ -119,29 +117,6 @@ RepeatabilityResult AnalyzeRepeatability(std::span<const Calibration> trials,
 /// P(χ²_dof ≥ chi2), for dof ≥ 1 (closed form for integer dof).
 /// \pre dof >= 1, chi2 >= 0.
 double ChiSquareUpperTail(double chi2, int dof);
-
-/// The JSON of the issue (`"format": "mpcal.repeatability/1"`), SI units,
-/// pretty-printed and newline-ended:
-/// {"format", "trials", "parameters": {"bias_mps2": {"values": [[x,y,z],...],
-/// "mean", "std_population", "std_sample", "changed": [bool|null ×3]},
-/// "scale_factor_error": {...}, "non_orthogonality_rad": {"yz": {"values":
-/// [...], "mean", ...}, "zx": {...}, "zy": {...}}}}.
-std::string RepeatabilityToJson(const RepeatabilityResult& result);
-
-/// Parses the JSON written by RepeatabilityToJson. `origin` names the source
-/// in messages (a path). Fields the file does not hold (names, conditions,
-/// χ², p-values) are left at their defaults; names become "trial 1", ...
-/// \throws mpcal::Error for malformed JSON, a missing or wrongly-typed field,
-///   an unknown format or major version, arrays whose length disagrees with
-///   "trials", or a non-finite value.
-RepeatabilityResult RepeatabilityFromJson(const std::string& text,
-                                          const std::string& origin);
-
-/// The table as CSV, SI units, one row per parameter:
-/// `parameter,trial_1,...,trial_n,mean,std_population,std_sample,changed,chi2,p_value`
-/// (parameter names of kParameterNames; `changed` is true/false or empty
-/// without a verdict; chi2 and p_value empty when absent).
-std::string RepeatabilityToCsv(const RepeatabilityResult& result);
 
 /// The paper's table in the paper's units: one column per trial, then mean,
 /// "std (n)" and "std (n-1)", the RMS of the trials' own 1σ ("1σ (rms)", "-"

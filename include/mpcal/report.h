@@ -21,59 +21,14 @@
 #include "mpcal/noise_file.h"
 #include "mpcal/recording.h"
 #include "mpcal/repeat.h"
+#include "mpcal/verification_file.h"
 #include "mpcal/verify.h"
 
 namespace mpcal {
 
-/// A horizontal path in the local east-north frame (m) against time (s).
-struct EastNorthPath {
-  std::vector<double> time_s;
-  std::vector<double> east_m;
-  std::vector<double> north_m;
-};
-
-/// The figures of `mpcal verify` (`"format": "mpcal.verification/1"`) and,
-/// when available, the paths themselves.
-struct VerificationSummary {
-  struct Metrics {
-    double start_end_distance_m = 0.0;
-    std::optional<double> horizontal_rms_m;  ///< to the reference
-    std::optional<double> horizontal_max_m;
-    std::optional<double> path_length_m;
-  };
-  Metrics reference;
-  Metrics raw;
-  std::optional<Metrics> corrected;  ///< only when verified with a calibration
-  std::optional<EastNorthPath> reference_path;
-  std::optional<EastNorthPath> raw_path;
-  std::optional<EastNorthPath> corrected_path;
-  /// Trajectory files named by the result, resolved against its directory
-  /// (role → path); empty when it names none.
-  std::vector<std::pair<std::string, std::string>> trajectory_files;
-  /// How the paths were made (time alignment, mount, gyroscope, stops, ...)
-  /// as (what, value) lines for the report, and the verifier's warnings.
-  std::vector<std::pair<std::string, std::string>> details;
-  std::vector<std::string> warnings;
-};
-
 /// The summary of an in-memory verification, paths included (east and north
 /// of the reference's frame).
 VerificationSummary SummarizeVerification(const VerifyResult& result);
-
-/// Parses the JSON text of a verification result. `origin` names the source
-/// in messages and is the base for relative trajectory paths it names.
-/// Trajectory files are not read here (see LoadReportInputs).
-/// \throws mpcal::Error for malformed JSON, another format, or a missing or
-///   wrongly-typed field.
-VerificationSummary ParseVerificationJson(const std::string& text,
-                                          const std::string& origin);
-
-/// Reads a trajectory CSV with a header naming a time column (`t`, `time`,
-/// `time_s`), an east column (`e`, `east`, `east_m`) and a north column (`n`,
-/// `north`, `north_m`); other columns are ignored.
-/// \throws mpcal::Error when unreadable, a column is missing, or a value is
-///   not a finite number (the message names the line).
-EastNorthPath ReadEastNorthCsv(const std::string& path);
 
 /// The recording a calibration came from, and the static intervals in it.
 struct ReportSession {

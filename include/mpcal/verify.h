@@ -5,7 +5,7 @@
 /// trajectories, place them at the first reference point with the reference's
 /// initial heading, and report for each the start-to-end distance (the paper's
 /// Table 7), the horizontal RMS and maximum distance to the reference and the
-/// path length.
+/// path length. The result's files are written in mpcal/verification_file.h.
 #pragma once
 
 #include <optional>
@@ -115,18 +115,5 @@ VerifyResult Verify(const Recording& imu,
                     const GnssTrack& reference,
                     const std::optional<Calibration>& calibration,
                     const VerifyOptions& options);
-
-/// The result file: `"format": "mpcal.verification/1"`, with `reference`,
-/// `raw` and (with a calibration) `corrected`, plus `time_alignment` and
-/// `integration` details, and `trajectories` when `trajectory_files` names
-/// the paths' CSVs (role "reference", "raw" or "corrected" → path, relative
-/// to the result's folder), so that `mpcal report` finds them.
-/// Pretty-printed, newline-ended.
-std::string VerificationToJson(
-    const VerifyResult& result,
-    const std::vector<std::pair<std::string, std::string>>& trajectory_files = {});
-
-/// CSV for plotting: `t_s,e_m,n_m,u_m` per point (reference: plus `q`).
-std::string PathToCsv(const TimedPath& path, const std::vector<int>& quality = {});
 
 }  // namespace mpcal

@@ -14,10 +14,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "gyro_calibration_json.h"
+#include "io/gyro_calibration_json.h"
+#include "io/json_reader.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/error.h"
-#include "mpcal/json_reader.h"
 #include "mpcal/log_reader.h"
 #include "mpcal/plausible.h"
 #include "mpcal/text_input.h"
@@ -188,67 +188,47 @@ ErrorModel ReadModel(const JsonReader& r,
   return m;
 }
 
-}  // namespace
-
-std::string CalibrationToJson(const Calibration& c) {
-  json j;
-  // An IMU file when the gyroscope is calibrated too; accelerometer-only
-  // calibrations keep the format every reader already knows.
-  j["format"] = c.gyroscope ? kImuCalibrationFormat : kCalibrationFormat;
-  j["model"] = std::string(ToString(c.model_kind));
-  j["gravity_mps2"] = Num(c.gravity_mps2, "gravity_mps2");
-  j["input"] = {{"units", std::string(ToString(c.input_units))},
+json InputJson(const Calibration& c) {
+  json input = {{"units", std::string(ToString(c.input_units))},
                 {"mps2_per_unit", Num(c.mps2_per_unit, "input.mps2_per_unit")}};
-  if (!c.scale_reference.empty()) j["input"]["scale_reference"] = c.scale_reference;
+  if (!c.scale_reference.empty()) input["scale_reference"] = c.scale_reference;
   if (c.input_layout) {
-    j["input"]["columns"] = c.input_layout->columns;
-    j["input"]["time_unit"] = c.input_layout->time_unit;
+    input["columns"] = c.input_layout->columns;
+    input["time_unit"] = c.input_layout->time_unit;
     if (c.input_layout->rate_hz > 0.0) {
-      j["input"]["rate_hz"] = Num(c.input_layout->rate_hz, "input.rate_hz");
+      input["rate_hz"] = Num(c.input_layout->rate_hz, "input.rate_hz");
     }
   }
-  PutModel(j, c.model, "");
-  if (c.bias_drift) {
-    j["bias_drift_mps2_per_s"] = Vec3(c.bias_drift->mps2_per_s, "bias_drift_mps2_per_s");
-    j["bias_reference_time_s"] =
-        Num(c.bias_drift->reference_time_s, "bias_reference_time_s");
-    j["bias_drift_p_value"] = Num(c.bias_drift->p_value, "bias_drift_p_value");
+  return input;
+}
+
+json FitJson(const FitSummary& f) {
+  json fit = {{"positions", f.positions},
+              {"residual_rms_before_mps2",
+               Num(f.residual_rms_before_mps2, "fit.residual_rms_before_mps2")},
+              {"residual_rms_after_mps2",
+               Num(f.residual_rms_after_mps2, "fit.residual_rms_after_mps2")},
+              {"iterations", f.iterations},
+              {"converged", f.converged},
+              {"excluded_positions", f.excluded_positions}};
+  if (f.variance_factor)
+    fit["variance_factor"] = Num(*f.variance_factor, "fit.variance_factor");
+  if (f.position_scatter_mps2) {
+    fit["position_scatter_mps2"] =
+        Num(*f.position_scatter_mps2, "fit.position_scatter_mps2");
   }
-  if (c.std) {
-    json s;
-    PutModel(s, *c.std, "std.");
-    if (c.bias_drift) {
-      s["bias_drift_mps2_per_s"] =
-          Vec3(c.bias_drift->std_mps2_per_s, "std.bias_drift_mps2_per_s");
-    }
-    j["std"] = s;
+  if (f.cross_validation_rms_mps2) {
+    fit["cross_validation_rms_mps2"] =
+        Num(*f.cross_validation_rms_mps2, "fit.cross_validation_rms_mps2");
   }
-  if (c.fit) {
-    const FitSummary& f = *c.fit;
-    json fit = {{"positions", f.positions},
-                {"residual_rms_before_mps2",
-                 Num(f.residual_rms_before_mps2, "fit.residual_rms_before_mps2")},
-                {"residual_rms_after_mps2",
-                 Num(f.residual_rms_after_mps2, "fit.residual_rms_after_mps2")},
-                {"iterations", f.iterations},
-                {"converged", f.converged},
-                {"excluded_positions", f.excluded_positions}};
-    if (f.variance_factor)
-      fit["variance_factor"] = Num(*f.variance_factor, "fit.variance_factor");
-    if (f.position_scatter_mps2) {
-      fit["position_scatter_mps2"] =
-          Num(*f.position_scatter_mps2, "fit.position_scatter_mps2");
-    }
-    if (f.cross_validation_rms_mps2) {
-      fit["cross_validation_rms_mps2"] =
-          Num(*f.cross_validation_rms_mps2, "fit.cross_validation_rms_mps2");
-    }
-    if (f.split_half) fit["split_half"] = SplitHalfJson(*f.split_half);
-    j["fit"] = fit;
-  }
+  if (f.split_half) fit["split_half"] = SplitHalfJson(*f.split_half);
+  return fit;
+}
+
+json PositionsJson(const std::vector<PositionSummary>& list) {
   json positions = json::array();
-  for (std::size_t i = 0; i < c.positions.size(); ++i) {
-    const PositionSummary& p = c.positions[i];
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const PositionSummary& p = list[i];
     const std::string at = fmt::format("positions[{}].", i);
     json q = {
         {"start_s", Num(p.start_s, at + "start_s")},
@@ -266,44 +246,10 @@ std::string CalibrationToJson(const Calibration& c) {
     }
     positions.push_back(std::move(q));
   }
-  j["positions"] = std::move(positions);
-  j["warnings"] = c.warnings;
-  if (c.gyroscope) j["gyroscope"] = internal::GyroToJson(*c.gyroscope);
-  if (c.provenance) {
-    j["provenance"] = {{"mpcal_version", c.provenance->mpcal_version},
-                       {"input", c.provenance->input},
-                       {"options", c.provenance->options}};
-  }
-  // Invalid UTF-8 in a path or message is replaced rather than thrown about.
-  return j.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
+  return positions;
 }
 
-Calibration CalibrationFromJson(const std::string& text, const std::string& origin) {
-  const JsonReader r(fmt::format("calibration file '{}'", origin), "mpcal calibrate");
-  const json j = r.Parse(text);
-  // mpcal.imu/1 is mpcal.accelerometer/1 plus a `gyroscope` block.
-  const bool imu = j.is_object() && j.contains("format") && j["format"].is_string() &&
-                   j["format"].get<std::string>().starts_with(
-                       std::string(internal::kImuFormatFamily) + "/");
-  r.ExpectFormat(j, imu ? internal::kImuFormatFamily : kFormatFamily, kMajorVersion);
-
-  Calibration c;
-  const std::string model = r.String(j, "", "model");
-  const auto kind = ParseModelKind(model);
-  if (!kind) {
-    r.Fail(fmt::format("unknown model '{}' (known: {}, {})",
-                       model,
-                       ToString(ModelKind::kShinElSheimy9),
-                       ToString(ModelKind::kBiasScale6)));
-  }
-  c.model_kind = *kind;
-  c.gravity_mps2 = r.Number(j, "", "gravity_mps2");
-  if (!IsPlausibleGravity(c.gravity_mps2)) {
-    r.Fail(
-        fmt::format("'gravity_mps2' = {} is not a magnitude of gravity on Earth (m/s²)",
-                    c.gravity_mps2));
-  }
-  const json& input = r.Object(j, "", "input");
+void ReadInput(const JsonReader& r, const json& input, Calibration& c) {
   const std::string units = r.String(input, "input", "units");
   const auto parsed_units = ParseAccelUnits(units);
   if (!parsed_units) {
@@ -353,6 +299,154 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
     }
     c.input_layout = layout;
   }
+}
+
+BiasDrift ReadBiasDrift(const JsonReader& r, const json& j) {
+  BiasDrift drift;
+  drift.mps2_per_s = r.Vector(j, "", "bias_drift_mps2_per_s");
+  drift.reference_time_s = r.Number(j, "", "bias_reference_time_s");
+  drift.p_value = r.Number(j, "", "bias_drift_p_value");
+  if (j.contains("std") && j["std"].contains("bias_drift_mps2_per_s")) {
+    drift.std_mps2_per_s = r.Vector(j["std"], "std", "bias_drift_mps2_per_s");
+  }
+  return drift;
+}
+
+FitSummary ReadFit(const JsonReader& r, const json& f) {
+  FitSummary fit;
+  fit.positions = static_cast<int>(r.Integer(f, "fit", "positions", 0));
+  fit.residual_rms_before_mps2 = r.Number(f, "fit", "residual_rms_before_mps2");
+  fit.residual_rms_after_mps2 = r.Number(f, "fit", "residual_rms_after_mps2");
+  fit.iterations = static_cast<int>(r.Integer(f, "fit", "iterations", 0));
+  fit.converged = r.Bool(f, "fit", "converged");
+  if (f.contains("excluded_positions")) {
+    fit.excluded_positions =
+        static_cast<int>(r.Integer(f, "fit", "excluded_positions", 0));
+  }
+  fit.variance_factor = r.OptionalNumber(f, "fit", "variance_factor");
+  fit.position_scatter_mps2 = r.OptionalNumber(f, "fit", "position_scatter_mps2");
+  fit.cross_validation_rms_mps2 = r.OptionalNumber(f, "fit", "cross_validation_rms_mps2");
+  if (f.contains("split_half")) fit.split_half = ReadSplitHalf(r, f);
+  return fit;
+}
+
+std::vector<PositionSummary> ReadPositions(const JsonReader& r, const json& ps) {
+  std::vector<PositionSummary> positions;
+  if (!ps.is_array()) {
+    r.Fail(fmt::format("field 'positions' must be an array, found {}",
+                       JsonReader::TypeName(ps)));
+  }
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const std::string at = fmt::format("positions[{}]", i);
+    if (!ps[i].is_object()) {
+      r.Fail(fmt::format(
+          "'{}' must be an object, found {}", at, JsonReader::TypeName(ps[i])));
+    }
+    const json& q = ps[i];
+    PositionSummary p;
+    p.start_s = r.Number(q, at, "start_s");
+    p.end_s = r.Number(q, at, "end_s");
+    for (const double t : {p.start_s, p.end_s}) {
+      if (!(std::abs(t) <= kMaxTimeS)) {
+        r.Fail(
+            fmt::format("'{}' has a time of {:.6g} s, beyond any logger's clock", at, t));
+      }
+    }
+    p.samples = static_cast<std::size_t>(
+        r.Integer(q, at, "samples", 0, std::numeric_limits<long long>::max()));
+    p.mean_mps2 = r.Vector(q, at, "mean_mps2");
+    p.sample_std_mps2 = r.Vector(q, at, "sample_std_mps2");
+    p.residual_before_mps2 = r.Number(q, at, "residual_before_mps2");
+    p.residual_after_mps2 = r.Number(q, at, "residual_after_mps2");
+    p.cross_validation_residual_mps2 =
+        r.OptionalNumber(q, at, "cross_validation_residual_mps2");
+    p.used = q.contains("used") ? r.Bool(q, at, "used") : true;
+    positions.push_back(p);
+  }
+  return positions;
+}
+
+std::vector<std::string> ReadWarnings(const JsonReader& r, const json& w) {
+  std::vector<std::string> warnings;
+  if (!w.is_array()) {
+    r.Fail(fmt::format("field 'warnings' must be an array of strings, found {}",
+                       JsonReader::TypeName(w)));
+  }
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    if (!w[i].is_string()) {
+      r.Fail(fmt::format(
+          "'warnings[{}]' must be a string, found {}", i, JsonReader::TypeName(w[i])));
+    }
+    warnings.push_back(w[i].get<std::string>());
+  }
+  return warnings;
+}
+
+}  // namespace
+
+std::string CalibrationToJson(const Calibration& c) {
+  json j;
+  // An IMU file when the gyroscope is calibrated too; accelerometer-only
+  // calibrations keep the format every reader already knows.
+  j["format"] = c.gyroscope ? kImuCalibrationFormat : kCalibrationFormat;
+  j["model"] = std::string(ToString(c.model_kind));
+  j["gravity_mps2"] = Num(c.gravity_mps2, "gravity_mps2");
+  j["input"] = InputJson(c);
+  PutModel(j, c.model, "");
+  if (c.bias_drift) {
+    j["bias_drift_mps2_per_s"] = Vec3(c.bias_drift->mps2_per_s, "bias_drift_mps2_per_s");
+    j["bias_reference_time_s"] =
+        Num(c.bias_drift->reference_time_s, "bias_reference_time_s");
+    j["bias_drift_p_value"] = Num(c.bias_drift->p_value, "bias_drift_p_value");
+  }
+  if (c.std) {
+    json s;
+    PutModel(s, *c.std, "std.");
+    if (c.bias_drift) {
+      s["bias_drift_mps2_per_s"] =
+          Vec3(c.bias_drift->std_mps2_per_s, "std.bias_drift_mps2_per_s");
+    }
+    j["std"] = s;
+  }
+  if (c.fit) j["fit"] = FitJson(*c.fit);
+  j["positions"] = PositionsJson(c.positions);
+  j["warnings"] = c.warnings;
+  if (c.gyroscope) j["gyroscope"] = internal::GyroToJson(*c.gyroscope);
+  if (c.provenance) {
+    j["provenance"] = {{"mpcal_version", c.provenance->mpcal_version},
+                       {"input", c.provenance->input},
+                       {"options", c.provenance->options}};
+  }
+  // Invalid UTF-8 in a path or message is replaced rather than thrown about.
+  return j.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
+}
+
+Calibration CalibrationFromJson(const std::string& text, const std::string& origin) {
+  const JsonReader r(fmt::format("calibration file '{}'", origin), Stage::kCalibrate);
+  const json j = r.Parse(text);
+  // mpcal.imu/1 is mpcal.accelerometer/1 plus a `gyroscope` block.
+  const bool imu = j.is_object() && j.contains("format") && j["format"].is_string() &&
+                   j["format"].get<std::string>().starts_with(
+                       std::string(internal::kImuFormatFamily) + "/");
+  r.ExpectFormat(j, imu ? internal::kImuFormatFamily : kFormatFamily, kMajorVersion);
+
+  Calibration c;
+  const std::string model = r.String(j, "", "model");
+  const auto kind = ParseModelKind(model);
+  if (!kind) {
+    r.Fail(fmt::format("unknown model '{}' (known: {}, {})",
+                       model,
+                       ToString(ModelKind::kShinElSheimy9),
+                       ToString(ModelKind::kBiasScale6)));
+  }
+  c.model_kind = *kind;
+  c.gravity_mps2 = r.Number(j, "", "gravity_mps2");
+  if (!IsPlausibleGravity(c.gravity_mps2)) {
+    r.Fail(
+        fmt::format("'gravity_mps2' = {} is not a magnitude of gravity on Earth (m/s²)",
+                    c.gravity_mps2));
+  }
+  ReadInput(r, r.Object(j, "", "input"), c);
   c.model = ReadModel(r, j, "", false);
   if (c.model_kind == ModelKind::kBiasScale6 &&
       (c.model.theta_yz_rad != 0.0 || c.model.theta_zx_rad != 0.0 ||
@@ -366,83 +460,10 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
     r.Object(j, "", "std");
     c.std = ReadModel(r, j["std"], "std", true);
   }
-  if (j.contains("bias_drift_mps2_per_s")) {
-    BiasDrift drift;
-    drift.mps2_per_s = r.Vector(j, "", "bias_drift_mps2_per_s");
-    drift.reference_time_s = r.Number(j, "", "bias_reference_time_s");
-    drift.p_value = r.Number(j, "", "bias_drift_p_value");
-    if (j.contains("std") && j["std"].contains("bias_drift_mps2_per_s")) {
-      drift.std_mps2_per_s = r.Vector(j["std"], "std", "bias_drift_mps2_per_s");
-    }
-    c.bias_drift = drift;
-  }
-  if (j.contains("fit")) {
-    const json& f = r.Object(j, "", "fit");
-    FitSummary fit;
-    fit.positions = static_cast<int>(r.Integer(f, "fit", "positions", 0));
-    fit.residual_rms_before_mps2 = r.Number(f, "fit", "residual_rms_before_mps2");
-    fit.residual_rms_after_mps2 = r.Number(f, "fit", "residual_rms_after_mps2");
-    fit.iterations = static_cast<int>(r.Integer(f, "fit", "iterations", 0));
-    fit.converged = r.Bool(f, "fit", "converged");
-    if (f.contains("excluded_positions")) {
-      fit.excluded_positions =
-          static_cast<int>(r.Integer(f, "fit", "excluded_positions", 0));
-    }
-    fit.variance_factor = r.OptionalNumber(f, "fit", "variance_factor");
-    fit.position_scatter_mps2 = r.OptionalNumber(f, "fit", "position_scatter_mps2");
-    fit.cross_validation_rms_mps2 =
-        r.OptionalNumber(f, "fit", "cross_validation_rms_mps2");
-    if (f.contains("split_half")) fit.split_half = ReadSplitHalf(r, f);
-    c.fit = fit;
-  }
-  if (j.contains("positions")) {
-    const json& ps = j["positions"];
-    if (!ps.is_array()) {
-      r.Fail(fmt::format("field 'positions' must be an array, found {}",
-                         JsonReader::TypeName(ps)));
-    }
-    for (std::size_t i = 0; i < ps.size(); ++i) {
-      const std::string at = fmt::format("positions[{}]", i);
-      if (!ps[i].is_object()) {
-        r.Fail(fmt::format(
-            "'{}' must be an object, found {}", at, JsonReader::TypeName(ps[i])));
-      }
-      const json& q = ps[i];
-      PositionSummary p;
-      p.start_s = r.Number(q, at, "start_s");
-      p.end_s = r.Number(q, at, "end_s");
-      for (const double t : {p.start_s, p.end_s}) {
-        if (!(std::abs(t) <= kMaxTimeS)) {
-          r.Fail(fmt::format(
-              "'{}' has a time of {:.6g} s, beyond any logger's clock", at, t));
-        }
-      }
-      p.samples = static_cast<std::size_t>(
-          r.Integer(q, at, "samples", 0, std::numeric_limits<long long>::max()));
-      p.mean_mps2 = r.Vector(q, at, "mean_mps2");
-      p.sample_std_mps2 = r.Vector(q, at, "sample_std_mps2");
-      p.residual_before_mps2 = r.Number(q, at, "residual_before_mps2");
-      p.residual_after_mps2 = r.Number(q, at, "residual_after_mps2");
-      p.cross_validation_residual_mps2 =
-          r.OptionalNumber(q, at, "cross_validation_residual_mps2");
-      p.used = q.contains("used") ? r.Bool(q, at, "used") : true;
-      c.positions.push_back(p);
-    }
-  }
-  if (j.contains("warnings")) {
-    const json& w = j["warnings"];
-    if (!w.is_array()) {
-      r.Fail(fmt::format("field 'warnings' must be an array of strings, found {}",
-                         JsonReader::TypeName(w)));
-    }
-    for (std::size_t i = 0; i < w.size(); ++i) {
-      if (!w[i].is_string()) {
-        r.Fail(fmt::format(
-            "'warnings[{}]' must be a string, found {}", i, JsonReader::TypeName(w[i])));
-      }
-      c.warnings.push_back(w[i].get<std::string>());
-    }
-  }
+  if (j.contains("bias_drift_mps2_per_s")) c.bias_drift = ReadBiasDrift(r, j);
+  if (j.contains("fit")) c.fit = ReadFit(r, r.Object(j, "", "fit"));
+  if (j.contains("positions")) c.positions = ReadPositions(r, j["positions"]);
+  if (j.contains("warnings")) c.warnings = ReadWarnings(r, j["warnings"]);
   if (j.contains("provenance")) {
     const json& p = r.Object(j, "", "provenance");
     Provenance prov;
@@ -459,9 +480,8 @@ Calibration ReadCalibrationFile(const std::string& path) {
   std::error_code ec;
   if (path != "-" && std::filesystem::is_directory(path, ec)) {
     throw Error(
-        fmt::format("calibration file '{}' is a directory; give the JSON file written "
-                    "by 'mpcal calibrate'",
-                    path));
+        ErrorKind::kIo,
+        fmt::format("calibration file '{}' is a directory; give the JSON file", path));
   }
   // Checked before it is read to the end: /dev/zero or a video named by
   // mistake is refused at once.

@@ -4,8 +4,8 @@
 
 #include <string_view>
 
+#include "io/json_reader.h"
 #include "mpcal/gyro_calibration.h"
-#include "mpcal/json_reader.h"
 
 namespace mpcal::internal {
 

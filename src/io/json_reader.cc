@@ -1,4 +1,4 @@
-#include "mpcal/json_reader.h"
+#include "io/json_reader.h"
 
 #include <cmath>
 #include <utility>
@@ -9,16 +9,23 @@
 
 namespace mpcal {
 
-JsonReader::JsonReader(std::string origin, std::string producer)
-    : origin_(std::move(origin)), producer_(std::move(producer)) {}
+JsonReader::JsonReader(std::string origin, Stage producer)
+    : origin_(std::move(origin)), producer_(producer) {}
 
 void JsonReader::Fail(const std::string& message) const {
-  throw Error(fmt::format("{}: {}", origin_, message));
+  throw Error(ErrorKind::kInput, fmt::format("{}: {}", origin_, message));
+}
+
+void JsonReader::FailFormat(const std::string& message) const {
+  Advice advice;
+  advice.stage = producer_;
+  throw Error(
+      ErrorKind::kFormat, fmt::format("{}: {}", origin_, message), std::move(advice));
 }
 
 JsonReader::json JsonReader::Parse(std::string_view text) const {
   if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) {
-    Fail(fmt::format("the file is empty; expected JSON written by '{}'", producer_));
+    FailFormat("the file is empty");
   }
   try {
     return json::parse(text);
@@ -35,16 +42,12 @@ JsonReader::json JsonReader::Parse(std::string_view text) const {
 void JsonReader::ExpectFormat(const json& doc, std::string_view family, int major) const {
   const std::string expected = fmt::format("{}/{}", family, major);
   if (!doc.is_object()) {
-    Fail(fmt::format("expected a JSON object with \"format\": \"{}\", found {}",
-                     expected,
-                     TypeName(doc)));
+    FailFormat(fmt::format("expected a JSON object with \"format\": \"{}\", found {}",
+                           expected,
+                           TypeName(doc)));
   }
   if (!doc.contains("format")) {
-    Fail(
-        fmt::format("no 'format' field: not a file written by '{}' (expected \"format\": "
-                    "\"{}\")",
-                    producer_,
-                    expected));
+    FailFormat(fmt::format("no 'format' field (expected \"format\": \"{}\")", expected));
   }
   const std::string format = String(doc, "", "format");
   const std::string prefix = fmt::format("{}/", family);
@@ -53,20 +56,21 @@ void JsonReader::ExpectFormat(const json& doc, std::string_view family, int majo
   const std::string version_major = version.substr(0, version.find('.'));
   if (version_major.empty() || version_major.size() > 5 ||
       version_major.find_first_not_of("0123456789") != std::string::npos) {
-    Fail(fmt::format("format '{}' is not '{}': not a file written by '{}'",
-                     format,
-                     expected,
-                     producer_));
+    FailFormat(fmt::format("format '{}' is not '{}'", format, expected));
   }
   if (std::stoi(version_major) != major) {
-    Fail(
-        fmt::format("format '{}' is version {} of the format; this mpcal reads version "
-                    "{} ('{}'): use the "
-                    "mpcal that wrote it, or a newer mpcal",
-                    format,
-                    version_major,
-                    major,
-                    expected));
+    // Another version of the right file: no stage to run would fix it.
+    throw Error(
+        ErrorKind::kFormat,
+        fmt::format(
+            "{}: format '{}' is version {} of the format; this mpcal reads version "
+            "{} ('{}'): use the "
+            "mpcal that wrote it, or a newer mpcal",
+            origin_,
+            format,
+            version_major,
+            major,
+            expected));
   }
 }
 

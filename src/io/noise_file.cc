@@ -12,8 +12,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "io/json_reader.h"
 #include "mpcal/error.h"
-#include "mpcal/json_reader.h"
 
 namespace mpcal {
 namespace {
@@ -295,7 +295,7 @@ std::string NoiseJson(const NoiseResult& r, const std::string& input, double con
 }
 
 NoiseFile ParseNoiseJson(const std::string& text, const std::string& origin) {
-  const JsonReader r(origin, "mpcal noise --json");
+  const JsonReader r(origin, Stage::kNoise);
   const json doc = r.Parse(text);
   r.ExpectFormat(doc, "mpcal.noise", 1);
   NoiseFile f;

@@ -6,7 +6,6 @@
 #include <limits>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "mpcal/error.h"
 #include "mpcal/units.h"
@@ -121,13 +120,6 @@ std::optional<std::size_t> ImuMotionStart(const StillResult& still,
       return i;
   }
   return std::nullopt;
-}
-
-nlohmann::ordered_json MetricsJson(const PathMetrics& m) {
-  return {{"start_end_distance_m", m.start_end_distance_m},
-          {"horizontal_rms_m", m.horizontal_rms_m},
-          {"horizontal_max_m", m.horizontal_max_m},
-          {"path_length_m", m.path_length_m}};
 }
 
 }  // namespace
@@ -389,51 +381,6 @@ VerifyResult Verify(const Recording& imu,
     result.warnings.push_back("the log has gyroscope columns, but they were not used");
   }
   return result;
-}
-
-std::string VerificationToJson(
-    const VerifyResult& r,
-    const std::vector<std::pair<std::string, std::string>>& trajectory_files) {
-  nlohmann::ordered_json j;
-  j["format"] = "mpcal.verification/1";
-  j["reference"] = {{"path_length_m", r.reference.path_length_m},
-                    {"start_end_distance_m", r.reference.start_end_distance_m}};
-  j["raw"] = MetricsJson(r.raw);
-  if (r.corrected) j["corrected"] = MetricsJson(*r.corrected);
-  nlohmann::ordered_json time = {{"method", ToString(r.time.method)},
-                                 {"offset_s", r.time.offset_s},
-                                 {"overlap_start_s", r.time.overlap_start_s},
-                                 {"overlap_end_s", r.time.overlap_end_s}};
-  if (r.time.motion_offset_s) time["motion_offset_s"] = *r.time.motion_offset_s;
-  j["time_alignment"] = time;
-  j["integration"] = nlohmann::ordered_json{
-      {"mount", ToString(r.mount)},
-      {"gravity_mps2", r.gravity_mps2},
-      {"gyroscope", r.gyro_used},
-      {"initial_rest_s", r.initial_rest_s},
-      {"initial_tilt_raw_deg", r.initial_tilt_raw_rad * 180.0 / M_PI},
-      {"stops", r.stops},
-      {"heading_rotation_deg", r.heading_rotation_rad * 180.0 / M_PI},
-      {"reference_epochs", r.reference.epochs}};
-  j["warnings"] = r.warnings;
-  if (!trajectory_files.empty()) {
-    nlohmann::ordered_json files;
-    for (const auto& [role, path] : trajectory_files) files[role] = path;
-    j["trajectories"] = files;
-  }
-  return j.dump(2) + "\n";
-}
-
-std::string PathToCsv(const TimedPath& path, const std::vector<int>& quality) {
-  const bool with_q = quality.size() == path.size() && !quality.empty();
-  std::string out = with_q ? "t_s,e_m,n_m,u_m,q\n" : "t_s,e_m,n_m,u_m\n";
-  for (std::size_t i = 0; i < path.size(); ++i) {
-    const Eigen::Vector3d& p = path.position_m[i];
-    out +=
-        fmt::format("{:.4f},{:.4f},{:.4f},{:.4f}", path.time_s[i], p.x(), p.y(), p.z());
-    out += with_q ? fmt::format(",{}\n", quality[i]) : "\n";
-  }
-  return out;
 }
 
 }  // namespace mpcal

@@ -317,5 +317,30 @@ TEST(GnssFormat, NamesRoundTrip) {
   EXPECT_FALSE(ParseGnssFormat("gpx").has_value());
 }
 
+// An unknown format is a fact with its remedy: the Option that names the
+// format (the command line spells it as its flag).
+TEST(GnssReader, UnknownFormatAdvisesNamingTheFormat) {
+  try {
+    ParseGnss("12 34 56\n", "ref.txt");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kFormat);
+    EXPECT_THAT(e.what(), HasSubstr("ref.txt: cannot tell the format of the reference"));
+    ASSERT_EQ(e.advice().settings.size(), 1u);
+    EXPECT_EQ(e.advice().settings[0].option, Option::kGnssFormat);
+  }
+}
+
+// The writer names the program the caller gives; the reader reads it back.
+TEST(GnssReader, RtklibPosNamesTheProgramGiven) {
+  PosEpoch e;
+  e.time_s = 1.7e9;
+  e.position = {45.0, 7.0, 300.0};
+  e.quality = 1;
+  const std::string text = FormatRtklibPos({e}, TimeSystem::kGpst, "my tool");
+  EXPECT_THAT(text, HasSubstr("% program   : my tool\n"));
+  EXPECT_EQ(ParseGnss(text, "w.pos").size(), 1u);
+}
+
 }  // namespace
 }  // namespace mpcal

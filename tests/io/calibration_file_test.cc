@@ -261,8 +261,15 @@ TEST(CalibrationFile, MalformedJsonGivesLineAndColumn) {
 TEST(CalibrationFile, FormatAndVersion) {
   nlohmann::json j = ValidJson();
   j.erase("format");
-  EXPECT_THAT(FromJsonError(j.dump()),
-              HasSubstr("no 'format' field: not a file written by 'mpcal calibrate'"));
+  EXPECT_THAT(FromJsonError(j.dump()), HasSubstr("no 'format' field"));
+  try {
+    CalibrationFromJson(j.dump(), "calib.json");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    // The command line adds "expected JSON written by 'mpcal calibrate'".
+    EXPECT_EQ(e.kind(), ErrorKind::kFormat);
+    EXPECT_EQ(e.advice().stage, Stage::kCalibrate);
+  }
   j["format"] = "mpcal.gyroscope/1";
   EXPECT_THAT(FromJsonError(j.dump()),
               HasSubstr("format 'mpcal.gyroscope/1' is not 'mpcal.accelerometer/1'"));

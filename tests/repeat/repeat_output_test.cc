@@ -11,6 +11,7 @@
 
 #include "mpcal/error.h"
 #include "mpcal/repeat.h"
+#include "mpcal/repeatability_file.h"
 
 namespace mpcal {
 namespace {

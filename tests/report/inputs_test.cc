@@ -61,8 +61,16 @@ TEST(VerificationJson, RejectsOtherFormatsAndMissingFieldsByName) {
       ErrorOf([] {
         ParseVerificationJson(R"({"format": "mpcal.accelerometer/1"})", "c.json");
       }),
-      HasSubstr("c.json: format 'mpcal.accelerometer/1' is not 'mpcal.verification/1': "
-                "not a file written by 'mpcal verify'"));
+      HasSubstr("c.json: format 'mpcal.accelerometer/1' is not 'mpcal.verification/1'"));
+  // A file of another kind: the advice is the stage that writes the kind
+  // expected (the command line spells it "written by 'mpcal verify'").
+  try {
+    ParseVerificationJson(R"({"format": "mpcal.accelerometer/1"})", "c.json");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kFormat);
+    EXPECT_EQ(e.advice().stage, Stage::kVerify);
+  }
   EXPECT_THAT(ErrorOf([] {
                 ParseVerificationJson(R"({"format": "mpcal.verification/2"})", "r.json");
               }),
@@ -71,9 +79,9 @@ TEST(VerificationJson, RejectsOtherFormatsAndMissingFieldsByName) {
       ErrorOf([] { ParseVerificationJson("[1, 2]", "r.json"); }),
       HasSubstr(
           "r.json: expected a JSON object with \"format\": \"mpcal.verification/1\""));
-  EXPECT_THAT(
-      ErrorOf([] { ParseVerificationJson(R"({"raw": {}})", "r.json"); }),
-      HasSubstr("r.json: no 'format' field: not a file written by 'mpcal verify'"));
+  EXPECT_THAT(ErrorOf([] { ParseVerificationJson(R"({"raw": {}})", "r.json"); }),
+              HasSubstr("r.json: no 'format' field (expected \"format\": "
+                        "\"mpcal.verification/1\")"));
   EXPECT_THAT(
       ErrorOf([] {
         ParseVerificationJson(

@@ -15,6 +15,7 @@
 #include "mpcal/gnss.h"
 #include "mpcal/log_reader.h"
 #include "mpcal/simulate_walk.h"
+#include "mpcal/verification_file.h"
 #include "mpcal/verify.h"
 #include "test_util.h"
 

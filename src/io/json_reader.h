@@ -1,9 +1,11 @@
-/// \file json_reader.h
-/// \brief Reading mpcal's own JSON files (the calibration, the repeatability
-/// table, the verification result) with errors that name the file and the
-/// field, in one vocabulary for all of them:
-/// `calibration file 'c.json': field 'fit.iterations' must be an integer, found a
-/// string`.
+// Reading mpcal's own JSON files (the calibration, the repeatability table,
+// the verification result, the noise analysis) with errors that name the file
+// and the field, in one vocabulary for all of them:
+// `calibration file 'c.json': field 'fit.iterations' must be an integer, found a
+// string`.
+//
+// Private to the io room: nlohmann stays out of the public headers, and every
+// file format is read and written in src/io/<format>_file.cc.
 #pragma once
 
 #include <limits>
@@ -14,20 +16,24 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include "mpcal/advice.h"
+
 namespace mpcal {
 
 /// Walks a parsed document; every accessor takes the path of the object it
 /// reads from ("" for the top level) so that a message names the field
 /// ("fit.iterations", "positions[3].mean_mps2[1]").
-/// Every failure throws mpcal::Error.
+/// Every failure throws mpcal::Error: ErrorKind::kFormat when the document is
+/// not of the format expected (advice: the stage that writes it), kInput for a
+/// malformed document or field.
 class JsonReader {
  public:
   using json = nlohmann::ordered_json;
 
   /// `origin` starts every message ("calibration file 'c.json'", or a path);
-  /// `producer` is the command that writes such files ("mpcal calibrate"),
-  /// named where a file is not what was expected.
-  JsonReader(std::string origin, std::string producer);
+  /// `producer` is the stage that writes such files (Stage::kCalibrate), the
+  /// advice where a file is not what was expected.
+  JsonReader(std::string origin, Stage producer);
 
   /// Parses `text`; an empty text or invalid JSON is an error.
   json Parse(std::string_view text) const;
@@ -36,7 +42,11 @@ class JsonReader {
   /// (a minor version, "/1.2", is accepted: it only adds fields).
   void ExpectFormat(const json& doc, std::string_view family, int major) const;
 
+  /// Throws Error(ErrorKind::kInput, "`origin`: `message`").
   [[noreturn]] void Fail(const std::string& message) const;
+  /// Throws Error(ErrorKind::kFormat, "`origin`: `message`"), advising the
+  /// stage that writes the file expected.
+  [[noreturn]] void FailFormat(const std::string& message) const;
 
   /// "a number", "a string", "true/false", "null", "an array", "an object".
   static std::string TypeName(const json& value);
@@ -81,7 +91,7 @@ class JsonReader {
 
  private:
   std::string origin_;
-  std::string producer_;
+  Stage producer_;
 };
 
 }  // namespace mpcal

@@ -1,13 +1,17 @@
-// The repeatability table as JSON ("mpcal.repeatability/1") and CSV.
+// The repeatability table as JSON ("mpcal.repeatability/1", written and read)
+// and CSV (written).
+#include "mpcal/repeatability_file.h"
+
+#include <array>
 #include <cmath>
 #include <string_view>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "io/json_reader.h"
+#include "io/result_text.h"
 #include "mpcal/error.h"
-#include "mpcal/json_reader.h"
-#include "mpcal/repeat.h"
 
 namespace mpcal {
 namespace {
@@ -142,7 +146,7 @@ std::string RepeatabilityToJson(const RepeatabilityResult& result) {
 
 RepeatabilityResult RepeatabilityFromJson(const std::string& text,
                                           const std::string& origin) {
-  const JsonReader in(origin, "mpcal repeat --json");
+  const JsonReader in(origin, Stage::kRepeat);
   const json doc = in.Parse(text);
   in.ExpectFormat(doc, kFormatFamily, 1);
   RepeatabilityResult r;
@@ -173,6 +177,11 @@ RepeatabilityResult RepeatabilityFromJson(const std::string& text,
                     r.parameters[6 + k]);
   }
   return r;
+}
+
+RepeatabilityResult ReadRepeatabilityFile(const std::string& path) {
+  return RepeatabilityFromJson(internal::ReadResultText(path, "a repeatability file"),
+                               path);
 }
 
 std::string RepeatabilityToCsv(const RepeatabilityResult& result) {
