@@ -19,6 +19,18 @@ namespace {
 
 using ::testing::HasSubstr;
 
+// Whether the coverage's advice offers the 6-parameter model (bias-scale-6).
+bool OffersSixParameterModel(const CoverageResult& coverage) {
+  for (const CoverageStep& step : coverage.advice) {
+    if (step.kind == CoverageStepKind::kSixParameterModel &&
+        step.advice.settings.at(0).option == Option::kModel &&
+        step.advice.settings.at(0).value == "bias-scale-6") {
+      return true;
+    }
+  }
+  return false;
+}
+
 // A Gaussian error beyond 4.5σ happens once in 150 000 draws: with 9
 // parameters × 3 presets a failure means a real defect, not bad luck.
 constexpr double kBoundSigmas = 4.5;
@@ -93,8 +105,12 @@ TEST(CalibrateRecording, CatchesAMps2LogReadAsG) {
   try {
     CalibrateRecording(s.recording, {});
     FAIL();
-  } catch (const Error& e) {
-    EXPECT_THAT(e.what(), HasSubstr("look like m/s2: use --units mps2"));
+  } catch (const UnitsError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("look like m/s2"));
+    EXPECT_EQ(e.finding().guess, UnitsGuess::kMps2);
+    ASSERT_EQ(e.advice().settings.size(), 1u);
+    EXPECT_EQ(e.advice().settings[0].option, Option::kLogUnits);
+    EXPECT_EQ(e.advice().settings[0].value, "mps2");
   }
 }
 
@@ -106,9 +122,10 @@ TEST(CalibrateRecording, RefusesTooFewPositionsAndSaysWhatToRecord) {
   try {
     CalibrateRecording(s.recording, {});
     FAIL();
-  } catch (const Error& e) {
-    EXPECT_THAT(e.what(), HasSubstr("--model bias-scale-6"));
-    EXPECT_THAT(e.what(), HasSubstr("mpcal detect"));
+  } catch (const SessionError& e) {
+    EXPECT_EQ(e.problem(), SessionProblem::kTooFewPositions);
+    EXPECT_TRUE(OffersSixParameterModel(e.coverage()));
+    EXPECT_EQ(e.advice().stage, Stage::kDetect);
   }
   // Exactly the six poses of ArduPilot and PX4: solved, with the warning
   // that nothing checks the fit.
@@ -178,8 +195,8 @@ TEST(RealRecordings, FerrarisSixPosesCalibrateWithTheSixParameterModelOnly) {
   try {
     CalibrateRecording(rec, CalibrateOptions{});
     FAIL() << "the 9-parameter model must be refused on six poses";
-  } catch (const Error& e) {
-    EXPECT_THAT(e.what(), HasSubstr("--model bias-scale-6"));
+  } catch (const SessionError& e) {
+    EXPECT_TRUE(OffersSixParameterModel(e.coverage()));
   }
   CalibrateOptions six;
   six.solve.model = ModelKind::kBiasScale6;
