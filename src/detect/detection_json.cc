@@ -1,4 +1,5 @@
 #include <cmath>
+#include <span>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -13,6 +14,46 @@ nlohmann::json Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 // JSON has no NaN: a missing value is null.
 nlohmann::json Num(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+}
+
+nlohmann::json IntervalsJson(const DetectResult& detection,
+                             const CoverageResult& coverage) {
+  using nlohmann::json;
+  json intervals = json::array();
+  for (std::size_t k = 0; k < detection.intervals.size(); ++k) {
+    const StaticInterval& iv = detection.intervals[k];
+    json j = {{"begin", iv.begin},
+              {"end", iv.end},
+              {"samples", iv.samples()},
+              {"start_s", iv.start_s},
+              {"end_s", iv.end_s},
+              {"duration_s", iv.duration_s()},
+              {"mean", Vec(iv.mean)},
+              {"std", Vec(iv.std)},
+              {"noise", iv.noise()}};
+    if (k < coverage.directions.size()) {
+      j["direction"] = Vec(coverage.directions[k]);
+      j["angle_to_previous_deg"] = Num(coverage.angle_to_previous_deg[k]);
+    }
+    intervals.push_back(j);
+  }
+  return intervals;
+}
+
+nlohmann::json TurnsJson(std::span<const Turn> turns) {
+  using nlohmann::json;
+  json turn_list = json::array();
+  for (const Turn& t : turns) {
+    turn_list.push_back({{"from", t.from + 1},
+                         {"to", t.from + 2},
+                         {"start_s", t.start_s},
+                         {"end_s", t.end_s},
+                         {"duration_s", t.duration_s()},
+                         {"angle_deg", t.angle_deg},
+                         {"axis", Vec(t.axis)},
+                         {"tilt_deg", t.tilt_deg}});
+  }
+  return turn_list;
 }
 
 }  // namespace
@@ -33,24 +74,7 @@ std::string DetectionReportJson(const DetectResult& detection,
     plain.summary = Summary(coverage);
     words = &plain;
   }
-  json intervals = json::array();
-  for (std::size_t k = 0; k < detection.intervals.size(); ++k) {
-    const StaticInterval& iv = detection.intervals[k];
-    json j = {{"begin", iv.begin},
-              {"end", iv.end},
-              {"samples", iv.samples()},
-              {"start_s", iv.start_s},
-              {"end_s", iv.end_s},
-              {"duration_s", iv.duration_s()},
-              {"mean", Vec(iv.mean)},
-              {"std", Vec(iv.std)},
-              {"noise", iv.noise()}};
-    if (k < coverage.directions.size()) {
-      j["direction"] = Vec(coverage.directions[k]);
-      j["angle_to_previous_deg"] = Num(coverage.angle_to_previous_deg[k]);
-    }
-    intervals.push_back(j);
-  }
+  const json intervals = IntervalsJson(detection, coverage);
   auto names = [](const std::vector<int>& idx) {
     json out = json::array();
     for (int i : idx)
@@ -66,17 +90,6 @@ std::string DetectionReportJson(const DetectResult& detection,
         {"closest_up_deg", ax.closest_up_deg},
         {"closest_down_deg", ax.closest_down_deg},
         {"largest_gap_deg", ax.largest_gap_deg}};
-  }
-  json turn_list = json::array();
-  for (const Turn& t : turns) {
-    turn_list.push_back({{"from", t.from + 1},
-                         {"to", t.from + 2},
-                         {"start_s", t.start_s},
-                         {"end_s", t.end_s},
-                         {"duration_s", t.duration_s()},
-                         {"angle_deg", t.angle_deg},
-                         {"axis", Vec(t.axis)},
-                         {"tilt_deg", t.tilt_deg}});
   }
   json doc = {{"format", "mpcal.detection/1"},
               {"source", source},
@@ -118,7 +131,7 @@ std::string DetectionReportJson(const DetectResult& detection,
                 {"problems", words->problems},
                 {"advice", words->advice},
                 {"summary", words->summary}}}};
-  if (!turns.empty()) doc["turns"] = turn_list;
+  if (!turns.empty()) doc["turns"] = TurnsJson(turns);
   return doc.dump(2) + "\n";
 }
 

@@ -229,43 +229,48 @@ std::string CalibrateOptions::Validate() const {
   return "";
 }
 
-CalibrateResult CalibrateRecording(const Recording& recording,
-                                   const CalibrateOptions& options) {
-  if (const std::string problem = options.Validate(); !problem.empty()) {
-    throw Error(ErrorKind::kOption, "calibration options: " + problem);
-  }
-  CalibrateResult result;
-  CheckUnits(recording, options.solve.gravity_mps2);
-  result.detection = DetectStatic(recording, options.detect);
-  const auto& intervals = result.detection.intervals;
+namespace {
+
+// Throws a SessionError unless the detection found enough positions for
+// the model.
+void RequireEnoughPositions(const Recording& recording,
+                            const DetectResult& detection,
+                            const CalibrateOptions& options) {
+  const auto& intervals = detection.intervals;
   if (intervals.empty()) {
     throw SessionError(SessionProblem::kNoPositions,
                        recording.source,
-                       result.detection,
+                       detection,
                        {},
-                       Describe(result.detection.finding),
-                       result.detection.finding.advice);
+                       Describe(detection.finding),
+                       detection.finding.advice);
   }
   if (static_cast<int>(intervals.size()) < ParameterCount(options.solve.model)) {
     CoverageOptions coverage;
     coverage.model = options.solve.model;
     coverage.units = recording.units;
-    CoverageResult assessed = AssessCoverage(result.detection, coverage);
+    CoverageResult assessed = AssessCoverage(detection, coverage);
     const std::string what = fmt::format("{}: {}", recording.source, Summary(assessed));
     throw SessionError(SessionProblem::kTooFewPositions,
                        recording.source,
-                       result.detection,
+                       detection,
                        std::move(assessed),
                        what,
                        Advice{{}, Stage::kDetect, recording.source});
   }
+}
 
-  // Raw counts: the nominal scale is the radius of the sphere the position
-  // means lie on, so that the model's scale-factor errors stay small numbers
-  // and the six-position initialisation works as for any other unit.
+// Raw counts: the nominal scale is the radius of the sphere the position
+// means lie on, so that the model's scale-factor errors stay small numbers
+// and the six-position initialisation works as for any other unit. Returns
+// the nominal offset (m/s²) and sets result->mps2_per_unit.
+Eigen::Vector3d NominalScale(const Recording& recording,
+                             const CalibrateOptions& options,
+                             CalibrateResult* result) {
+  const auto& intervals = result->detection.intervals;
   Eigen::Vector3d nominal_offset_mps2 = Eigen::Vector3d::Zero();
   if (const auto fixed = FixedMps2PerUnit(recording.units)) {
-    result.mps2_per_unit = *fixed;
+    result->mps2_per_unit = *fixed;
   } else {
     std::vector<Eigen::Vector3d> means;
     for (const auto& in : intervals) means.push_back(in.mean);
@@ -274,7 +279,7 @@ CalibrateResult CalibrateRecording(const Recording& recording,
       throw SessionError(
           SessionProblem::kCountsNotSpread,
           recording.source,
-          result.detection,
+          result->detection,
           {},
           fmt::format("{}: the {} static positions do not spread over the sphere, so the "
                       "offset and scale of the raw counts cannot be found from them; "
@@ -283,31 +288,20 @@ CalibrateResult CalibrateRecording(const Recording& recording,
                       intervals.size()),
           Advice{{{Option::kLogUnits, "counts"}}, Stage::kDetect, recording.source});
     }
-    result.mps2_per_unit = options.counts_per_g > 0.0
-                               ? kStandardGravityMps2 / options.counts_per_g
-                               : options.solve.gravity_mps2 / sphere.radius;
-    nominal_offset_mps2 = sphere.centre * result.mps2_per_unit;
+    result->mps2_per_unit = options.counts_per_g > 0.0
+                                ? kStandardGravityMps2 / options.counts_per_g
+                                : options.solve.gravity_mps2 / sphere.radius;
+    nominal_offset_mps2 = sphere.centre * result->mps2_per_unit;
   }
 
-  for (const auto& in : intervals) {
-    PositionObservation p;
-    p.mean_mps2 = in.mean * result.mps2_per_unit;
-    p.sample_std_mps2 = in.std * result.mps2_per_unit;
-    p.samples = in.samples();
-    p.start_s = in.start_s;
-    p.end_s = in.end_s;
-    result.positions.push_back(p);
-  }
+  return nominal_offset_mps2;
+}
 
-  SolveOptions solve = options.solve;
-  solve.nominal_offset_mps2 = nominal_offset_mps2;
-  result.solve = Solve(result.positions, solve);
-  // Positions dropped for clipping, then the solver's.
-  for (const auto& note : result.detection.notes)
-    result.warnings.push_back(Describe(note));
-  result.warnings.insert(
-      result.warnings.end(), result.solve.warnings.begin(), result.solve.warnings.end());
-
+// The calibration file's content from the solve.
+void Package(const Recording& recording,
+             const CalibrateOptions& options,
+             CalibrateResult* result_ptr) {
+  CalibrateResult& result = *result_ptr;
   Calibration& c = result.calibration;
   c.model_kind = options.solve.model;
   c.gravity_mps2 = options.solve.gravity_mps2;
@@ -352,9 +346,16 @@ CalibrateResult CalibrateRecording(const Recording& recording,
     c.positions.push_back(s);
   }
   c.warnings = result.warnings;
+}
 
-  // The gyroscope from the turns between the same positions, with the
-  // gravity directions of the accelerometer just calibrated.
+// The gyroscope from the turns between the same positions, with the gravity
+// directions of the accelerometer just calibrated.
+void CalibrateGyroscopeToo(const Recording& recording,
+                           const CalibrateOptions& options,
+                           CalibrateResult* result_ptr) {
+  CalibrateResult& result = *result_ptr;
+  const auto& intervals = result.detection.intervals;
+  Calibration& c = result.calibration;
   if (options.calibrate_gyroscope && !recording.gyro_radps.empty() &&
       result.solve.converged()) {
     // The accelerometer's calibration stands without it: a gyroscope that
@@ -367,7 +368,41 @@ CalibrateResult CalibrateRecording(const Recording& recording,
       c.warnings = result.warnings;
     }
   }
-  return result;
 }
 
-}  // namespace mpcal
+}  // namespace
+
+CalibrateResult CalibrateRecording(const Recording& recording,
+                                   const CalibrateOptions& options) {
+  if (const std::string problem = options.Validate(); !problem.empty()) {
+    throw Error(ErrorKind::kOption, "calibration options: " + problem);
+  }
+  CalibrateResult result;
+  CheckUnits(recording, options.solve.gravity_mps2);
+  result.detection = DetectStatic(recording, options.detect);
+  RequireEnoughPositions(recording, result.detection, options);
+  const Eigen::Vector3d nominal_offset_mps2 = NominalScale(recording, options, &result);
+  const auto& intervals = result.detection.intervals;
+  for (const auto& in : intervals) {
+    PositionObservation p;
+    p.mean_mps2 = in.mean * result.mps2_per_unit;
+    p.sample_std_mps2 = in.std * result.mps2_per_unit;
+    p.samples = in.samples();
+    p.start_s = in.start_s;
+    p.end_s = in.end_s;
+    result.positions.push_back(p);
+  }
+
+  SolveOptions solve = options.solve;
+  solve.nominal_offset_mps2 = nominal_offset_mps2;
+  result.solve = Solve(result.positions, solve);
+  // Positions dropped for clipping, then the solver's.
+  for (const auto& note : result.detection.notes)
+    result.warnings.push_back(Describe(note));
+  result.warnings.insert(
+      result.warnings.end(), result.solve.warnings.begin(), result.solve.warnings.end());
+
+  Package(recording, options, &result);
+  CalibrateGyroscopeToo(recording, options, &result);
+  return result;
+}

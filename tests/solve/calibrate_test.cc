@@ -210,3 +210,49 @@ TEST(RealRecordings, FerrarisSixPosesCalibrateWithTheSixParameterModelOnly) {
 
 }  // namespace
 }  // namespace mpcal
+
+namespace mpcal {
+namespace {
+
+// The turns detect reports: one between each pair of neighbouring
+// positions, each carrying the gravity direction measured before it onto
+// the one after to within the simulated gyroscope's errors (a few per cent of
+// scale: a degree or two on a 90 deg turn).
+TEST(MeasureTurns, CarriesGravityOverEachTurnAndFindsTheScaleOfCounts) {
+  SimulateStaticOptions options = Session("colibri", 11);
+  options.positions = 12;
+  options.dwell_s = 4.0;
+  options.initial_rest_s = 0.0;
+  options.gyro = true;
+  const SimulatedSession s = SimulateStatic(options);
+  const DetectResult det = DetectStatic(s.recording, {});
+  ASSERT_EQ(det.intervals.size(), 12u);
+  const std::vector<Turn> turns = MeasureTurns(s.recording, det.intervals);
+  ASSERT_EQ(turns.size(), 11u);
+  for (const Turn& t : turns) {
+    // The rotation is at least the tilt it causes, and the hand's turn about
+    // gravity adds a little more.
+    EXPECT_GE(t.angle_deg, t.tilt_deg - 3.0);
+    EXPECT_GT(t.tilt_deg, 20.0);
+    EXPECT_NEAR(t.axis.norm(), 1.0, 1e-9);
+    EXPECT_GT(t.duration_s(), 0.0);
+  }
+  // The same session in raw counts: the fitted scale is the simulator's
+  // (within the gyroscope's own scale errors) and the angles agree.
+  options.gyro_units = GyroUnits::kCounts;
+  const SimulatedSession c = SimulateStatic(options);
+  double scale = 0.0;
+  const std::vector<Turn> counted = MeasureTurns(c.recording, det.intervals, &scale);
+  ASSERT_EQ(counted.size(), turns.size());
+  EXPECT_NEAR(scale * options.gyro_counts_per_radps, 1.0, 0.08);
+  for (std::size_t k = 0; k < turns.size(); ++k) {
+    EXPECT_NEAR(counted[k].angle_deg, turns[k].angle_deg, 0.08 * turns[k].angle_deg);
+  }
+  // No gyroscope: no turns.
+  Recording accel_only = s.recording;
+  accel_only.gyro_radps.clear();
+  EXPECT_TRUE(MeasureTurns(accel_only, det.intervals).empty());
+}
+
+}  // namespace
+}  // namespace mpcal
