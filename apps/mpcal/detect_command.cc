@@ -160,7 +160,7 @@ void PrintCoverage(const CoverageResult& cov, const CoverageOptions& o) {
 void PrintTurns(const Recording& rec, const std::vector<Turn>& turns, double scale) {
   if (turns.empty()) return;
   const double t0 = rec.time_s.front();
-  fmt::print("\n{:>4} {:>9} {:>7} {:>9} {:>7} {:>7} {:>7} {:>8}\n",
+  fmt::print("\n{:>5} {:>9} {:>7} {:>9} {:>7} {:>7} {:>7} {:>8}\n",
              "turn",
              "start s",
              "dur s",
@@ -170,7 +170,7 @@ void PrintTurns(const Recording& rec, const std::vector<Turn>& turns, double sca
              "axis z",
              "tilt deg");
   for (const Turn& t : turns) {
-    fmt::print("{:>4} {:>9.2f} {:>7.2f} {:>9.1f} {:>7.3f} {:>7.3f} {:>7.3f} {:>8.1f}\n",
+    fmt::print("{:>5} {:>9.2f} {:>7.2f} {:>9.1f} {:>7.3f} {:>7.3f} {:>7.3f} {:>8.1f}\n",
                fmt::format("{}-{}", t.from + 1, t.from + 2),
                t.start_s - t0,
                t.duration_s(),

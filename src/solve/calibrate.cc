@@ -406,3 +406,5 @@ CalibrateResult CalibrateRecording(const Recording& recording,
   CalibrateGyroscopeToo(recording, options, &result);
   return result;
 }
+
+}  // namespace mpcal
