@@ -9,6 +9,7 @@
 #include "calibration_table.h"
 #include "cli_options.h"
 #include "command.h"
+#include "explain_detect.h"
 #include "gyro_table.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
@@ -122,7 +123,16 @@ void Run(CalibrateFlags& f) {
   if (f.calibrate.counts_per_g > 0.0 && f.log.units != AccelUnits::kCounts) {
     throw Error("--counts-per-g is the scale of raw counts: it goes with --units counts");
   }
-  CalibrateResult result = CalibrateRecording(recording, f.calibrate);
+  CalibrateResult result =
+      WithDetectWords([&] { return CalibrateRecording(recording, f.calibrate); });
+  // The detection's notes lead the warnings: in the command line's words.
+  const auto& notes = result.detection.notes;
+  for (std::size_t k = 0; k < notes.size() && k < result.warnings.size(); ++k) {
+    result.warnings[k] = ExplainNote(notes[k]);
+    if (k < result.calibration.warnings.size()) {
+      result.calibration.warnings[k] = result.warnings[k];
+    }
+  }
   result.calibration.provenance = Provenance{MPCAL_VERSION, f.input, DescribeOptions(f)};
   result.calibration.input_layout = RecordedLayout(f.input, f.log);
 

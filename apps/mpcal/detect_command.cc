@@ -9,11 +9,13 @@
 
 #include "cli_options.h"
 #include "command.h"
+#include "explain_detect.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/coverage.h"
 #include "mpcal/detect.h"
 #include "mpcal/error.h"
+#include "mpcal/gyro_log.h"
 #include "mpcal/log_reader.h"
 #include "progress.h"
 
@@ -23,6 +25,7 @@ namespace {
 struct DetectFlags {
   std::string input;
   std::string json;
+  std::string gyro_log;
   LogOptions log;
   GravityFlags gravity;
   CalibrateOptions calibrate;
@@ -153,15 +156,63 @@ void PrintCoverage(const CoverageResult& cov, const CoverageOptions& o) {
              cov.observability);
 }
 
+// The turns between the positions, as the gyroscope measured them.
+void PrintTurns(const Recording& rec, const std::vector<Turn>& turns, double scale) {
+  if (turns.empty()) return;
+  const double t0 = rec.time_s.front();
+  fmt::print("\n{:>5} {:>9} {:>7} {:>9} {:>7} {:>7} {:>7} {:>8}\n",
+             "turn",
+             "start s",
+             "dur s",
+             "angle deg",
+             "axis x",
+             "axis y",
+             "axis z",
+             "tilt deg");
+  for (const Turn& t : turns) {
+    fmt::print("{:>5} {:>9.2f} {:>7.2f} {:>9.1f} {:>7.3f} {:>7.3f} {:>7.3f} {:>8.1f}\n",
+               fmt::format("{}-{}", t.from + 1, t.from + 2),
+               t.start_s - t0,
+               t.duration_s(),
+               t.angle_deg,
+               t.axis.x(),
+               t.axis.y(),
+               t.axis.z(),
+               t.tilt_deg);
+  }
+  fmt::print(
+      "turns between neighbouring positions from the gyroscope ({}), bias measured at "
+      "the two positions taken out; axis in the sensor frame at the start; tilt: angle "
+      "between the gravity directions before and after\n",
+      rec.gyro_units == GyroUnits::kCounts
+          ? fmt::format("nominal scale {:.5g} rad/s per count, fitted to the tilts",
+                        scale)
+          : fmt::format("in {}", ToString(rec.gyro_units)));
+}
+
+GyroUnits GyroUnitsOf(const LogOptions& log) {
+  if (log.gyro_in_counts) return GyroUnits::kCounts;
+  return log.gyro_in_dps ? GyroUnits::kDps : GyroUnits::kRadps;
+}
+
 void Run(DetectFlags& f) {
   ThrowIfInvalid(f.calibrate.detect.Validate(), "detect");
-  if (!f.json.empty()) CheckOutput(f.json, {f.input});
+  if (!f.json.empty()) CheckOutput(f.json, {f.input, f.gyro_log});
 
   TerminalProgress progress("reading " + f.input);
   f.log.progress = progress.Callback();
-  const Recording rec = ReadLog(f.input, f.log);
+  Recording rec = ReadLog(f.input, f.log);
   progress.Done();
-  CheckUnits(rec, f.gravity.Resolve());
+  if (!f.gyro_log.empty()) {
+    // The gyroscope's own file: t, x, y, z, row by row with the input.
+    LogOptions gyro_options;
+    gyro_options.time_unit = f.log.time_unit;
+    gyro_options.rate_hz = f.log.rate_hz;
+    const Recording gyro = ReadLog(f.gyro_log, gyro_options);
+    for (const auto& w : gyro.warnings) fmt::print("  note: {}\n", w);
+    MergeGyroLog(rec, gyro, GyroUnitsOf(f.log));
+  }
+  WithDetectWords([&] { CheckUnits(rec, f.gravity.Resolve()); });
 
   const DetectOptions& o = f.calibrate.detect;
   const DetectResult det = DetectStatic(rec, o);
@@ -170,6 +221,8 @@ void Run(DetectFlags& f) {
   co.units = rec.units;
   co.hold_s = std::max(10.0, std::ceil(o.min_static_s + 2 * o.settle_s + o.window_s));
   const CoverageResult cov = AssessCoverage(det, co);
+  double gyro_scale = 0.0;
+  const std::vector<Turn> turns = MeasureTurns(rec, det.intervals, &gyro_scale);
 
   const double span_s = rec.time_s.back() - rec.time_s.front();
   fmt::print("{}: {} rows, {:.1f} s at {:.4g} Hz, units {}\n",
@@ -181,20 +234,25 @@ void Run(DetectFlags& f) {
   // On stdout with the report, so that stderr keeps to the one error line.
   for (const auto& w : rec.warnings) fmt::print("  note: {}\n", w);
   PrintDetection(rec, det, o);
-  for (const auto& w : det.warnings) fmt::print("  note: {}\n", w);
+  for (const auto& n : det.notes) fmt::print("  note: {}\n", ExplainNote(n));
   PrintIntervals(rec, det, cov);
+  PrintTurns(rec, turns, gyro_scale);
   PrintCoverage(cov, co);
 
   if (!f.json.empty()) {
-    WriteFileAtomically(f.json, DetectionReportJson(det, cov, co, f.input));
+    const DetectionWords words = ExplainDetectionWords(det, cov);
+    WriteFileAtomically(f.json,
+                        DetectionReportJson(det, cov, co, f.input, &words, turns));
     fmt::print("\nwrote {}\n", f.json);
   }
-  if (det.intervals.empty()) throw Error(f.input + ": " + det.message);
+  if (det.intervals.empty()) {
+    throw Error(ErrorKind::kSession, f.input + ": " + ExplainDetection(det.finding));
+  }
 
   fmt::print("\nverdict: {}\n", ToString(cov.verdict));
-  for (const auto& p : cov.problems) fmt::print("  - {}\n", p);
-  for (const auto& a : cov.advice) fmt::print("  next: {}\n", a);
-  if (!cov.good_enough()) throw Error(cov.summary);
+  for (const auto& p : cov.problems) fmt::print("  - {}\n", ExplainProblem(p));
+  for (const auto& a : cov.advice) fmt::print("  next: {}\n", ExplainStep(a));
+  if (!cov.good_enough()) throw Error(ErrorKind::kSession, ExplainSummary(cov));
   fmt::print("good enough to calibrate with --model {}: run 'mpcal calibrate {} ...'\n",
              ToString(co.model),
              f.input);
@@ -207,13 +265,19 @@ void AddDetectCommand(CLI::App& root) {
   CLI::App* app = root.add_subcommand(
       "detect",
       "Find the static positions in a log, show how well they cover the sphere, and say "
-      "whether they are enough to calibrate (exit 0) or what to record next (exit 1)");
+      "whether they are enough to calibrate (exit 0) or what to record next (exit 1); "
+      "with a gyroscope, the turns between the positions (angle, axis, duration)");
   app->add_option("INPUT", flags->input, "Log: CSV or text, '-' for standard input")
       ->required();
   app->add_option("--json",
                   flags->json,
                   "Also write the intervals and the coverage as JSON (mpcal.detection/1)")
       ->check(OutputPath);
+  app->add_option("--gyro-log",
+                  flags->gyro_log,
+                  "The gyroscope's readings in a file of their own (t, x, y, z; the same "
+                  "rows as INPUT), to report the turns between the positions")
+      ->check(CLI::ExistingFile);
   AddLogOptions(*app, flags->log);
   AddGravityOptions(*app, flags->gravity);
   AddCalibrateOptions(*app, flags->calibrate);
@@ -221,6 +285,8 @@ void AddDetectCommand(CLI::App& root) {
       "Examples:\n"
       "  mpcal detect session.csv\n"
       "  mpcal detect xsens_acc.mat --units counts --json positions.json\n"
+      "  mpcal detect xsens_acc.mat --gyro-log xsens_gyro.mat --units counts "
+      "--gyro-units counts\n"
       "  mpcal detect poses.csv --columns t=n_samples --time-unit index --rate 102.4 "
       "--model bias-scale-6\n"
       "Exit status: 0 when the session is good enough for the model, 1 otherwise (the "

@@ -12,6 +12,7 @@
 
 #include "cli_options.h"
 #include "command.h"
+#include "explain_detect.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/detect.h"
@@ -158,7 +159,7 @@ void Run(NoiseFlags& f) {
   f.log.progress = progress.Callback();
   Recording rec = ReadLog(f.input, f.log);
   progress.Done();
-  CheckUnits(rec, f.gravity.Resolve());
+  WithDetectWords([&] { CheckUnits(rec, f.gravity.Resolve()); });
   const bool has_gyro = rec.gyro_radps.size() == rec.size();
   if (!f.kalibr.empty() && !has_gyro) {
     throw Error(f.input +
@@ -181,7 +182,7 @@ void Run(NoiseFlags& f) {
                       "still, give --whole to analyse all of it",
                       f.input,
                       span_s,
-                      det.message));
+                      ExplainDetection(det.finding)));
     }
   }
   const double mps2_per_unit = *FixedMps2PerUnit(rec.units);

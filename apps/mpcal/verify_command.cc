@@ -14,6 +14,7 @@
 #include "calibration_table.h"
 #include "cli_options.h"
 #include "command.h"
+#include "explain_detect.h"
 #include "explain.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
@@ -114,7 +115,7 @@ void RunVerify(CLI::App& cmd, VerifyFlags& f) {
 
   // A walk in g read as m/s² integrates to a tenth of the distance: the
   // same units check as calibrate's (|a| stays near g while walking too).
-  CheckUnits(imu, options.integrate.gravity_mps2);
+  WithDetectWords([&] { CheckUnits(imu, options.integrate.gravity_mps2); });
   const VerifyResult result = Verify(imu, reference, calibration, options);
   // The paths first, so that the result can name them for `mpcal report`.
   std::vector<std::pair<std::string, std::string>> trajectories;

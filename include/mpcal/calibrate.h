@@ -5,11 +5,15 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mpcal/calibration.h"
+#include "mpcal/coverage.h"
 #include "mpcal/detect.h"
+#include "mpcal/error.h"
 #include "mpcal/gyro.h"
 #include "mpcal/recording.h"
 #include "mpcal/solve.h"
@@ -47,18 +51,96 @@ struct CalibrateResult {
   std::vector<std::string> warnings;
 };
 
+/// What the magnitude of the readings says about their units.
+enum class UnitsGuess {
+  kUnknown,  ///< none of the units fits: the columns or units are wrong
+  kG,        ///< read as m/s², the readings are about 1: they are in g
+  kMps2,     ///< read as g, the readings are about 9.8: they are in m/s²
+  kCounts,   ///< far beyond any g: raw ADC counts
+};
+
+/// The readings do not fit their declared units (thrown by CheckUnits):
+/// kind kUnits; the advice is the units they look like (Option::kLogUnits),
+/// or the units and the columns to check.
+class UnitsError : public Error {
+ public:
+  struct Finding {
+    std::string source;
+    AccelUnits units = AccelUnits::kMps2;
+    double median_magnitude = 0.0;  ///< in `units`
+    double gravity_mps2 = 0.0;
+    UnitsGuess guess = UnitsGuess::kUnknown;
+  };
+  UnitsError(Finding finding, const std::string& what, Advice advice)
+      : Error(ErrorKind::kUnits, what, std::move(advice)), finding_(std::move(finding)) {}
+  const Finding& finding() const { return finding_; }
+
+ private:
+  Finding finding_;
+};
+
+/// Why a session cannot be calibrated (thrown by CalibrateRecording): kind
+/// kSession, with the detection or coverage behind it.
+enum class SessionProblem {
+  kNoPositions,      ///< detection found none: detection.finding says why
+  kTooFewPositions,  ///< fewer than the model's parameters: see coverage
+  kCountsNotSpread,  ///< raw counts whose positions do not span the sphere
+};
+
+class SessionError : public Error {
+ public:
+  SessionError(SessionProblem problem,
+               std::string source,
+               DetectResult detection,
+               CoverageResult coverage,
+               const std::string& what,
+               Advice advice)
+      : Error(ErrorKind::kSession, what, std::move(advice)),
+        problem_(problem),
+        source_(std::move(source)),
+        detection_(std::move(detection)),
+        coverage_(std::move(coverage)) {}
+  SessionProblem problem() const { return problem_; }
+  const std::string& source() const { return source_; }
+  const DetectResult& detection() const { return detection_; }
+  /// kTooFewPositions only.
+  const CoverageResult& coverage() const { return coverage_; }
+
+ private:
+  SessionProblem problem_;
+  std::string source_;
+  DetectResult detection_;
+  CoverageResult coverage_;
+};
+
 /// Catches a log in one unit read as another from the magnitude of its
 /// readings, before detection (read in the wrong unit, the noise at rest looks
 /// ten times too large or too small and detection would fail for the wrong
 /// reason). Raw counts and an empty recording pass: counts have no fixed scale.
-/// \throws mpcal::Error when the median magnitude is far from `gravity_mps2`
-///   (outside 0.5-1.6 g, beyond any sensor's own errors), saying which
-///   `--units` the readings look like.
+/// \throws mpcal::UnitsError when the median magnitude is far from
+///   `gravity_mps2` (outside 0.5-1.6 g, beyond any sensor's own errors),
+///   saying which units the readings look like; mpcal::Error (kOption) when
+///   `gravity_mps2` is not a plausible gravity.
 void CheckUnits(const Recording& recording, double gravity_mps2);
 
-/// \throws mpcal::Error when the recording has too few static positions for
-///   the model (the message says how many were found and what to record), or
-///   when the positions leave a parameter undetermined, or invalid options.
+/// The turns between neighbouring positions (in time order, as DetectStatic
+/// found them), integrated from the gyroscope's readings by the exponential
+/// map with the bias measured at rest (the mean of the two positions' mean
+/// readings) taken out. The nominal scale is that of the gyroscope's units;
+/// for raw counts, the one common scale that carries the gravity direction
+/// of each position onto the next best (the tilt's least squares over a log
+/// grid, refined by golden section), so that angles come out in degrees.
+/// Returns `scale_radps_per_unit` too when asked. Empty when the recording
+/// has no gyroscope or fewer than two positions.
+/// \throws mpcal::Error (kInput) when an interval lies outside the recording.
+std::vector<Turn> MeasureTurns(const Recording& recording,
+                               std::span<const StaticInterval> intervals,
+                               double* scale_radps_per_unit = nullptr);
+
+/// \throws mpcal::SessionError when the recording has no static position, too
+///   few for the model (with the coverage: how many, what to record), or raw
+///   counts whose positions do not give their scale; mpcal::UnitsError as
+///   CheckUnits; mpcal::Error for invalid options.
 CalibrateResult CalibrateRecording(const Recording& recording,
                                    const CalibrateOptions& options);
 

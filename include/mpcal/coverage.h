@@ -20,6 +20,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -27,26 +28,13 @@
 
 #include <Eigen/Core>
 
+#include "mpcal/advice.h"
 #include "mpcal/detect.h"
 #include "mpcal/model.h"
+#include "mpcal/sphere_fit.h"
 #include "mpcal/units.h"
 
 namespace mpcal {
-
-/// Offset and radius that turn mean readings into unit directions.
-struct SphereFit {
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< recording units
-  double radius = 0.0;  ///< recording units (≈ g in those units)
-  /// True when the centre came from the least-squares fit, false when from
-  /// the fallback described in the file comment.
-  bool fitted = false;
-  /// RMS of |m_k − c| − radius over the means (recording units).
-  double residual_rms = 0.0;
-};
-
-/// Fits the offset of `means` (any units) as the file comment describes.
-/// Never throws; with no means the centre is 0 and the radius 0.
-SphereFit FitSphere(std::span<const Eigen::Vector3d> means, AccelUnits units);
 
 /// One of the 26 canonical directions.
 struct CanonicalDirection {
@@ -97,6 +85,63 @@ struct CoverageOptions {
   std::string Validate() const;
 };
 
+/// What is wrong or weak about a session's positions, worst first.
+enum class CoverageProblemKind {
+  kTooFewPositions,     ///< fewer positions than the model needs
+  kTooFewOrientations,  ///< enough positions, too few distinct orientations
+  kNotDetermined,       ///< they lie too close to one plane or cone
+  kBelowRecommended,    ///< fewer distinct orientations than recommended
+  kExactFit,            ///< as many positions as parameters: nothing checks
+  kNeverUp,             ///< an axis never pointed up
+  kNeverDown,           ///< an axis never pointed down
+  kWeak,                ///< determined, some parameters poorly
+  kEmptyCap,            ///< a large part of the sphere has no position
+};
+
+struct CoverageProblem {
+  CoverageProblemKind kind = CoverageProblemKind::kTooFewPositions;
+  ModelKind model = ModelKind::kShinElSheimy9;
+  int positions = 0;
+  int distinct_positions = 0;
+  int parameters = 0;
+  int required_positions = 0;
+  /// kNeverUp, kNeverDown: the axis (0 x, 1 y, 2 z) and its closest angle to
+  /// up or down (deg); kEmptyCap: the cap's radius (deg) and the orientation
+  /// nearest its centre (what points down, e.g. "+x-y-z corner").
+  int axis = 0;
+  double angle_deg = 0.0;
+  std::string down;
+  double observability = 0.0;
+};
+
+/// What to do next, in order.
+enum class CoverageStepKind {
+  kRecordPositions,    ///< record `count` more positions, e.g. `orientations`
+  kSixParameterModel,  ///< or calibrate bias and scale only (advice: the model)
+  kHoldLonger,         ///< hold each position longer (advice: the minimum)
+};
+
+struct CoverageStep {
+  CoverageStepKind kind = CoverageStepKind::kRecordPositions;
+  /// kRecordPositions: how many, the orientations named (what points down;
+  /// empty when any new one does), how many more beyond those named, and
+  /// the hold time (s).
+  int count = 0;
+  std::vector<std::string> orientations;
+  int unnamed = 0;
+  double hold_s = 0.0;
+  /// kHoldLonger: the still stretches dropped as too short.
+  int dropped_short = 0;
+  /// The option that would change the outcome, when one would.
+  Advice advice;
+};
+
+/// Plain sentences (no option names), e.g. "+x never pointed up (closest
+/// 60 deg)", "record 3 more positions, e.g. with the -x-y-z corner down
+/// (~10 s each, still)".
+std::string Describe(const CoverageProblem& problem);
+std::string Describe(const CoverageStep& step);
+
 struct CoverageResult {
   SphereFit normalisation;
   /// Unit direction of each position, in input order, and the angle (deg)
@@ -127,17 +172,22 @@ struct CoverageResult {
   int required_positions = 0;
   int recommended_positions = 0;
   CoverageVerdict verdict = CoverageVerdict::kNotEnough;
-  /// Plain sentences: what is wrong or weak (empty when good), what to record
-  /// next (empty when nothing is needed).
-  std::vector<std::string> problems;
-  std::vector<std::string> advice;
-  /// One line for the user: the verdict and its main reason, e.g. "session
-  /// has 7 static positions, the 9-parameter model needs at least 10: record
-  /// 3 more, e.g. with the -x-y-z corner down ...".
-  std::string summary;
+  /// What is wrong or weak (empty when good), what to do next (empty when
+  /// nothing is needed), both in order.
+  std::vector<CoverageProblem> problems;
+  std::vector<CoverageStep> advice;
 
   bool good_enough() const { return verdict != CoverageVerdict::kNotEnough; }
 };
+
+/// One plain line: the verdict and its main reason, e.g. "session has 7
+/// static positions, the 9-parameter model needs at least 10: record 3 more,
+/// e.g. with the -x-y-z corner down ...".
+/// `word_step` words each step (Describe by default): a caller that names
+/// the options its own way passes its wording.
+std::string Summary(const CoverageResult& result);
+std::string Summary(const CoverageResult& result,
+                    const std::function<std::string(const CoverageStep&)>& word_step);
 
 /// Assesses the positions whose mean readings are `means` (recording units).
 /// \throws mpcal::Error if the options are invalid or a mean is not finite.
@@ -153,10 +203,22 @@ CoverageResult AssessCoverage(const DetectResult& detection,
 /// recording's clock, mean and std in its units, direction, angle to the
 /// previous) and the coverage (canonical directions covered and missing by
 /// the name of what points down, per-axis figures, verdict, problems,
-/// advice). `source` and `units` describe the recording. Never throws.
+/// advice), and the turns between the positions when given (angle, axis,
+/// duration, tilt). `source` and `units` describe the recording. The sentences are
+/// `words` when given (a caller's wording of the findings), else Describe's.
+/// Never throws.
+struct DetectionWords {
+  std::string message;
+  std::vector<std::string> notes;
+  std::vector<std::string> problems;
+  std::vector<std::string> advice;
+  std::string summary;
+};
 std::string DetectionReportJson(const DetectResult& detection,
                                 const CoverageResult& coverage,
                                 const CoverageOptions& options,
-                                const std::string& source);
+                                const std::string& source,
+                                const DetectionWords* words = nullptr,
+                                std::span<const Turn> turns = {});
 
 }  // namespace mpcal

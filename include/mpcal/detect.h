@@ -31,6 +31,7 @@
 
 #include <Eigen/Core>
 
+#include "mpcal/advice.h"
 #include "mpcal/recording.h"
 
 namespace mpcal {
@@ -98,6 +99,76 @@ struct StaticInterval {
   double noise() const { return std.norm(); }
 };
 
+/// What detection concluded, as a kind.
+enum class DetectOutcome {
+  kFound,       ///< at least one static position
+  kNeverStill,  ///< no window was still: the sensor never stops moving
+  kTooShort,    ///< still stretches, none long enough after trimming
+  kAllClipped,  ///< positions found, every one dropped for clipping
+};
+
+/// Why detection found what it found, with the figures behind it and what
+/// would change it. Describe() turns it into a plain sentence; the command
+/// line spells the advice as its flags.
+struct DetectFinding {
+  DetectOutcome kind = DetectOutcome::kFound;
+  double span_s = 0.0;  ///< time the recording covers
+  /// The options that decided it.
+  double window_s = 0.0;
+  double min_static_s = 0.0;
+  double settle_s = 0.0;
+  double threshold_factor = 0.0;
+  double quiet_quantile = 0.0;
+  double max_still_g = 0.0;
+  /// The figures (recording units unless named): as in DetectResult.
+  double threshold = 0.0;
+  bool threshold_capped = false;
+  double quiet_level = 0.0;
+  double quiet_g = 0.0;  ///< the quiet level in g (0 when unknown)
+  double longest_still_s = 0.0;
+  int dropped_short = 0;
+  int dropped_clipped = 0;
+  /// The range limits the clipped readings reached, e.g. "|x| >= 8.73773".
+  std::string clip_limits;
+  /// kTooShort: the minimum and settling the longest stretch would pass.
+  double suggested_min_static_s = 0.0;
+  double suggested_settle_s = 0.0;
+  /// The options that would change the outcome (any one of them), with the
+  /// values the data suggest.
+  Advice advice;
+};
+
+/// A finding about one position or the whole recording that does not stop
+/// detection.
+enum class DetectNoteKind {
+  kClippedPosition,  ///< a position dropped: readings at the range limit
+  kNotStill,         ///< even the quietest part moves more than a still sensor
+};
+
+struct DetectNote {
+  DetectNoteKind kind = DetectNoteKind::kClippedPosition;
+  /// kClippedPosition: the position (log clock), its clipped samples and the
+  /// limits they reached.
+  double start_s = 0.0;
+  double end_s = 0.0;
+  std::size_t clipped_samples = 0;
+  std::string clip_limits;
+  /// kNotStill: the quiet level in g, over the quietest fraction, and the
+  /// most a still MEMS accelerometer shows (g).
+  double quiet_g = 0.0;
+  double quiet_quantile = 0.0;
+  double plausible_quiet_g = 0.0;
+  Advice advice;
+};
+
+/// The finding as plain sentences (no option names): its facts, then what
+/// to do. DescribeFacts() is the first part alone, for a caller that words
+/// the advice itself.
+std::string Describe(const DetectFinding& finding);
+std::string DescribeFacts(const DetectFinding& finding);
+std::string Describe(const DetectNote& note);
+std::string DescribeFacts(const DetectNote& note);
+
 struct DetectResult {
   std::vector<StaticInterval> intervals;
   /// Quiet level of the motion statistic and the threshold used (recording
@@ -116,9 +187,9 @@ struct DetectResult {
   /// the positions dropped because they contain some.
   std::size_t clipped_samples = 0;
   int dropped_clipped = 0;
-  /// Non-fatal findings for the user, one line each (a position dropped for
-  /// clipping, with its time in the log's clock).
-  std::vector<std::string> warnings;
+  /// Non-fatal findings (a position dropped for clipping, with its time in
+  /// the log's clock; a recording that is never still), in order.
+  std::vector<DetectNote> notes;
   /// Longest still stretch found (s, before trimming), kept or not, and the
   /// fraction of the samples that were still.
   double longest_still_s = 0.0;
@@ -126,9 +197,25 @@ struct DetectResult {
   /// Moving window in samples and the typical sample period (s).
   std::size_t window_samples = 0;
   double sample_period_s = 0.0;
-  /// When no interval was found: why, with the figures, and what to try
-  /// (one line, for the user). Empty otherwise.
-  std::string message;
+  /// Why the intervals are what they are: kFound, or why none was found,
+  /// with the figures and what to try.
+  DetectFinding finding;
+};
+
+/// The turn between two neighbouring static positions, as the gyroscope
+/// measured it (see MeasureTurns in calibrate.h).
+struct Turn {
+  std::size_t from = 0;  ///< index of the position before (the one after: from + 1)
+  double start_s = 0.0;  ///< end of the position before (log clock)
+  double end_s = 0.0;    ///< start of the position after
+  double duration_s() const { return end_s - start_s; }
+  /// Rotation angle (deg) and unit axis (sensor frame at the start), with
+  /// the bias measured at the two positions taken out.
+  double angle_deg = 0.0;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  /// Angle between the gravity directions measured at the two positions
+  /// (deg): the part of the turn the accelerometer sees.
+  double tilt_deg = 0.0;
 };
 
 /// Finds the static positions of `recording` (any units; time must increase).

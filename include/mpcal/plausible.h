@@ -9,18 +9,13 @@
 
 #include <cmath>
 
+#include "mpcal/gravity.h"
 #include "mpcal/units.h"
 
 namespace mpcal {
 
-/// Gravity's magnitude anywhere a sensor is calibrated on Earth: 9.78 m/s²
-/// at the equator to 9.83 at the poles at sea level, a few mGal less on a
-/// mountain top; the range leaves margin for both (m/s²).
-inline constexpr double kMinGravityMps2 = 9.7;
-inline constexpr double kMaxGravityMps2 = 9.9;
-inline bool IsPlausibleGravity(double g_mps2) {
-  return g_mps2 >= kMinGravityMps2 && g_mps2 <= kMaxGravityMps2;
-}
+/// Gravity's plausible range (kMinGravityMps2, kMaxGravityMps2,
+/// IsPlausibleGravity) is stated once, in gravity.h.
 
 /// The largest acceleration any accelerometer reports: shock sensors reach a
 /// few thousand g; 10,000 g leaves margin. A reading beyond it, in the

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include <fmt/format.h>
 #include <Eigen/Dense>
@@ -74,26 +75,6 @@ std::vector<CanonicalDirection> MakeCanonical() {
   return out;
 }
 
-// Fallback offset (see the header): 0, or for unsigned ADC counts the power of
-// two nearest the median reading.
-Eigen::Vector3d FallbackCentre(std::span<const Eigen::Vector3d> means, AccelUnits units) {
-  if (units != AccelUnits::kCounts || means.empty()) return Eigen::Vector3d::Zero();
-  std::vector<double> c;
-  for (const auto& m : means) {
-    for (int i = 0; i < 3; ++i) {
-      if (m[i] < 0.0) return Eigen::Vector3d::Zero();
-      c.push_back(m[i]);
-    }
-  }
-  std::nth_element(
-      c.begin(), c.begin() + static_cast<std::ptrdiff_t>(c.size() / 2), c.end());
-  const double median = c[c.size() / 2];
-  if (median < 1.0) return Eigen::Vector3d::Zero();
-  const double p = std::exp2(std::round(std::log2(median)));
-  return std::abs(median - p) < 0.5 * p ? Eigen::Vector3d::Constant(p)
-                                        : Eigen::Vector3d::Zero();
-}
-
 // Ratio of the smallest non-trivial to the largest singular value of the
 // quadric design at the directions (see CoverageResult::observability).
 double Observability(const std::vector<Eigen::Vector3d>& u, ModelKind model) {
@@ -119,21 +100,244 @@ double Observability(const std::vector<Eigen::Vector3d>& u, ModelKind model) {
   return s(needed - 1) / s(0);
 }
 
-std::string JoinNames(const std::vector<std::string>& names) {
-  std::string out;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (i > 0) out += i + 1 == names.size() ? " and " : ", ";
-    out += names[i];
+// Unit direction of each mean about the fitted offset, and the angle from
+// the one before.
+void Directions(std::span<const Eigen::Vector3d> means, CoverageResult* res) {
+  for (const auto& m : means) {
+    const Eigen::Vector3d d = m - res->normalisation.centre;
+    res->directions.push_back(d.norm() > 0.0 ? Eigen::Vector3d(d.normalized())
+                                             : Eigen::Vector3d::UnitZ());
+  }
+  const auto& u = res->directions;
+  for (std::size_t k = 0; k < u.size(); ++k) {
+    res->angle_to_previous_deg.push_back(k == 0 ? std::numeric_limits<double>::quiet_NaN()
+                                                : AngleDeg(u[k], u[k - 1]));
+  }
+}
+
+// The canonical directions within near_deg of a position, and the others.
+void CoverCanonical(const std::vector<Eigen::Vector3d>& u,
+                    double near_deg,
+                    CoverageResult* res) {
+  const auto& canon = CanonicalDirections();
+  for (std::size_t c = 0; c < canon.size(); ++c) {
+    const bool hit = std::any_of(u.begin(), u.end(), [&](const Eigen::Vector3d& v) {
+      return AngleDeg(v, canon[c].direction) <= near_deg;
+    });
+    (hit ? res->covered : res->missing).push_back(static_cast<int>(c));
+  }
+}
+
+// Per axis: the tilts visited, the closest to up and down, the largest gap.
+AxisCoverage AxisTilts(const std::vector<Eigen::Vector3d>& u, int i, double near_deg) {
+  AxisCoverage ax;
+  std::vector<double> tilt{0.0, 180.0};
+  for (const auto& v : u) {
+    const double up = AngleDeg(v, Eigen::Vector3d::Unit(i));
+    ax.closest_up_deg = std::min(ax.closest_up_deg, up);
+    ax.closest_down_deg = std::min(ax.closest_down_deg, 180.0 - up);
+    tilt.push_back(up);
+  }
+  ax.near_up = ax.closest_up_deg <= near_deg;
+  ax.near_down = ax.closest_down_deg <= near_deg;
+  std::sort(tilt.begin(), tilt.end());
+  ax.largest_gap_deg = 0.0;
+  for (std::size_t k = 1; k < tilt.size(); ++k) {
+    ax.largest_gap_deg = std::max(ax.largest_gap_deg, tilt[k] - tilt[k - 1]);
+  }
+  return ax;
+}
+
+// Distinct orientations: greedy grouping within distinct_deg.
+int DistinctCount(const std::vector<Eigen::Vector3d>& u, double distinct_deg) {
+  std::vector<Eigen::Vector3d> distinct;
+  for (const auto& v : u) {
+    const bool seen = std::any_of(distinct.begin(), distinct.end(), [&](const auto& d) {
+      return AngleDeg(v, d) < distinct_deg;
+    });
+    if (!seen) distinct.push_back(v);
+  }
+  return static_cast<int>(distinct.size());
+}
+
+// Largest empty cap, over a Fibonacci lattice of ~2000 directions (about
+// 2.5° apart: fine enough for advice).
+void LargestEmptyCap(const std::vector<Eigen::Vector3d>& u, CoverageResult* res) {
+  constexpr int kLattice = 2000;
+  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  res->largest_empty_cap_deg = u.empty() ? 180.0 : 0.0;
+  for (int k = 0; k < kLattice && !u.empty(); ++k) {
+    const double z = 1.0 - (2.0 * k + 1.0) / kLattice;
+    const double r = std::sqrt(1.0 - z * z);
+    const Eigen::Vector3d p(r * std::cos(golden * k), r * std::sin(golden * k), z);
+    double nearest = 180.0;
+    for (const auto& v : u) nearest = std::min(nearest, AngleDeg(p, v));
+    if (nearest > res->largest_empty_cap_deg) {
+      res->largest_empty_cap_deg = nearest;
+      res->emptiest_direction = p;
+    }
+  }
+}
+
+// What to record: faces for the axes never up or down first, then missing
+// corners and edges (they tilt every axis at once). `faces` gets the number
+// of faces at the front.
+std::vector<std::string> Suggestions(const CoverageResult& res, std::size_t* faces) {
+  std::vector<std::string> out;
+  for (int i = 0; i < 3; ++i) {
+    const AxisCoverage& ax = res.axes[static_cast<std::size_t>(i)];
+    const std::string name(1, static_cast<char>('x' + i));
+    if (!ax.near_up) out.push_back("-" + name + " face");  // +axis up: -face down
+    if (!ax.near_down) out.push_back("+" + name + " face");
+  }
+  *faces = out.size();
+  const auto& canon = CanonicalDirections();
+  for (const auto kind :
+       {CanonicalDirection::Kind::kCorner, CanonicalDirection::Kind::kEdge}) {
+    for (int c : res.missing) {
+      if (canon[static_cast<std::size_t>(c)].kind == kind) {
+        out.push_back(canon[static_cast<std::size_t>(c)].down);
+      }
+    }
   }
   return out;
 }
 
-// The one line of a session that is not enough: its main problem, then what
-// to do, in order.
-std::string NotEnoughSummary(const CoverageResult& res) {
-  std::string out = res.problems.front() + ": " + res.advice.front();
-  for (std::size_t k = 1; k < res.advice.size(); ++k) out += "; " + res.advice[k];
-  return out;
+// The main problem when the positions cannot determine the model: too few,
+// too few distinct, or too close to one plane or cone.
+std::optional<CoverageProblem> NotEnoughProblem(const CoverageResult& res,
+                                                ModelKind model) {
+  CoverageProblem p;
+  p.model = model;
+  p.positions = res.positions;
+  p.distinct_positions = res.distinct_positions;
+  p.parameters = ParameterCount(model);
+  p.required_positions = res.required_positions;
+  if (res.positions < res.required_positions) {
+    p.kind = CoverageProblemKind::kTooFewPositions;
+  } else if (res.observability < kNoObservability) {
+    p.kind = res.distinct_positions <= p.parameters
+                 ? CoverageProblemKind::kTooFewOrientations
+                 : CoverageProblemKind::kNotDetermined;
+  } else {
+    return std::nullopt;
+  }
+  return p;
+}
+
+// The weaker problems, in order, after the main one.
+void WeakProblems(const CoverageResult& res,
+                  ModelKind model,
+                  bool not_enough,
+                  std::vector<CoverageProblem>* problems) {
+  const bool nine = model == ModelKind::kShinElSheimy9;
+  CoverageProblem base;
+  base.model = model;
+  base.positions = res.positions;
+  base.distinct_positions = res.distinct_positions;
+  base.parameters = ParameterCount(model);
+  base.required_positions = res.required_positions;
+  auto add = [&](CoverageProblemKind kind, int axis = 0, double angle = 0.0) {
+    CoverageProblem p = base;
+    p.kind = kind;
+    p.axis = axis;
+    p.angle_deg = angle;
+    p.observability = res.observability;
+    problems->push_back(p);
+  };
+  if (nine && res.distinct_positions < res.recommended_positions) {
+    add(CoverageProblemKind::kBelowRecommended);
+  }
+  if (!nine && res.positions == base.parameters) add(CoverageProblemKind::kExactFit);
+  for (int i = 0; i < 3; ++i) {
+    const AxisCoverage& ax = res.axes[static_cast<std::size_t>(i)];
+    if (!ax.near_up) add(CoverageProblemKind::kNeverUp, i, ax.closest_up_deg);
+    if (!ax.near_down) add(CoverageProblemKind::kNeverDown, i, ax.closest_down_deg);
+  }
+  if (!not_enough && res.observability < kWeakObservability) {
+    add(CoverageProblemKind::kWeak);
+  }
+}
+
+// The largest hole, when a 9-parameter session has one over 45°: a problem,
+// and its nearest canonical direction moved to just after the faces in the
+// suggestions, since it fills the hole best.
+void EmptyCapProblem(const CoverageResult& res,
+                     std::size_t faces,
+                     std::vector<std::string>* suggestions,
+                     std::vector<CoverageProblem>* problems) {
+  const auto& canon = CanonicalDirections();
+  const auto nearest =
+      std::min_element(canon.begin(), canon.end(), [&](const auto& l, const auto& r) {
+        return AngleDeg(l.direction, res.emptiest_direction) <
+               AngleDeg(r.direction, res.emptiest_direction);
+      });
+  CoverageProblem p;
+  p.kind = CoverageProblemKind::kEmptyCap;
+  p.angle_deg = res.largest_empty_cap_deg;
+  p.down = nearest->down;
+  problems->push_back(p);
+  const auto first = suggestions->begin() + static_cast<std::ptrdiff_t>(faces);
+  if (std::find(suggestions->begin(), first, nearest->down) == first) {
+    const auto at = std::find(first, suggestions->end(), nearest->down);
+    if (at != suggestions->end()) suggestions->erase(at);
+    suggestions->insert(suggestions->begin() + static_cast<std::ptrdiff_t>(faces),
+                        nearest->down);
+  }
+}
+
+// "Record `count` more positions", naming at most 8 of the suggestions (a
+// longer list is not read), and at least every face needed.
+CoverageStep RecordStep(const std::vector<std::string>& suggestions,
+                        std::size_t faces,
+                        int count,
+                        double hold_s) {
+  CoverageStep step;
+  step.kind = CoverageStepKind::kRecordPositions;
+  step.count = std::max<int>(count, static_cast<int>(faces));
+  step.hold_s = hold_s;
+  constexpr int kMaxNamed = 8;
+  const auto named = std::min<std::ptrdiff_t>(
+      static_cast<std::ptrdiff_t>(suggestions.size()), std::min(step.count, kMaxNamed));
+  step.orientations.assign(suggestions.begin(), suggestions.begin() + named);
+  if (!step.orientations.empty() && step.count > kMaxNamed) {
+    step.unnamed = step.count - kMaxNamed;
+  }
+  return step;
+}
+
+// The verdict and what to do, from the problems found.
+void Verdict(const CoverageOptions& options,
+             bool not_enough,
+             const std::vector<std::string>& suggestions,
+             std::size_t faces,
+             CoverageResult* res) {
+  const bool nine = options.model == ModelKind::kShinElSheimy9;
+  const int short_by = std::max(res->required_positions - res->positions,
+                                res->recommended_positions - res->distinct_positions);
+  if (not_enough) {
+    res->verdict = CoverageVerdict::kNotEnough;
+    const int more = std::max(1,
+                              res->positions < res->required_positions
+                                  ? res->required_positions - res->positions
+                                  : short_by);
+    res->advice.push_back(RecordStep(suggestions, faces, more, options.hold_s));
+    if (nine && res->positions >= ParameterCount(ModelKind::kBiasScale6)) {
+      CoverageStep six;
+      six.kind = CoverageStepKind::kSixParameterModel;
+      six.advice.settings.push_back(
+          {Option::kModel, std::string(ToString(ModelKind::kBiasScale6))});
+      res->advice.push_back(six);
+    }
+  } else if (!res->problems.empty()) {
+    res->verdict = CoverageVerdict::kUsableWithWarnings;
+    if (short_by > 0 || faces > 0 || !suggestions.empty()) {
+      res->advice.push_back(
+          RecordStep(suggestions, faces, std::max(1, short_by), options.hold_s));
+    }
+  } else {
+    res->verdict = CoverageVerdict::kGood;
+  }
 }
 
 }  // namespace
@@ -163,326 +367,44 @@ const std::vector<CanonicalDirection>& CanonicalDirections() {
   return kDirections;
 }
 
-SphereFit FitSphere(std::span<const Eigen::Vector3d> means, AccelUnits units) {
-  SphereFit fit;
-  if (means.empty()) return fit;
-  // Linear least squares |m|² = 2 m·c + d on means centred on their average
-  // (counts near 32768 square to 1e9 and would swamp the noise otherwise),
-  // scaled to unit RMS so that the conditioning test below is unit-free.
-  Eigen::Vector3d avg = Eigen::Vector3d::Zero();
-  for (const auto& m : means) avg += m;
-  avg /= static_cast<double>(means.size());
-  double spread = 0.0;
-  for (const auto& m : means) spread += (m - avg).squaredNorm();
-  spread = std::sqrt(spread / static_cast<double>(means.size()));
-
-  bool fitted = false;
-  Eigen::Vector3d centre = FallbackCentre(means, units);
-  if (means.size() >= 4 && spread > 0.0) {
-    const auto k = static_cast<Eigen::Index>(means.size());
-    Eigen::MatrixXd design(k, 4);
-    Eigen::VectorXd rhs(k);
-    for (Eigen::Index i = 0; i < k; ++i) {
-      const Eigen::Vector3d q = (means[static_cast<std::size_t>(i)] - avg) / spread;
-      design.row(i) << 2 * q.x(), 2 * q.y(), 2 * q.z(), 1.0;
-      rhs(i) = q.squaredNorm();
-    }
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(design);
-    const Eigen::VectorXd& s = svd.singularValues();
-    if (s(3) > 1e-3 * s(0)) {
-      const Eigen::Vector4d x = design.colPivHouseholderQr().solve(rhs);
-      const Eigen::Vector3d c = avg + spread * x.head<3>();
-      // A fit through positions that all sit on a small cap can put the
-      // centre anywhere along the cap's axis: accept it only when the
-      // directions about it spread out (their mean is short).
-      Eigen::Vector3d mean_dir = Eigen::Vector3d::Zero();
-      bool finite = c.allFinite();
-      for (const auto& m : means) {
-        const Eigen::Vector3d d = m - c;
-        if (!(d.norm() > 0.0)) finite = false;
-        mean_dir += d.normalized();
-      }
-      mean_dir /= static_cast<double>(means.size());
-      // And only when the positions spread over a good part of the sphere
-      // (their RMS distance from their average is r for the whole sphere,
-      // 0.3 r for a cap of 17°), with a radius near 1 g when the unit says
-      // what 1 g is.
-      const double radius = (means.front() - c).norm();
-      bool plausible = radius < 2.5 * spread;
-      if (const auto per_unit = FixedMps2PerUnit(units)) {
-        const double g_units = kStandardGravityMps2 / *per_unit;
-        plausible = plausible && radius > 0.7 * g_units && radius < 1.3 * g_units;
-      }
-      if (finite && plausible && mean_dir.norm() < 0.8) {
-        centre = c;
-        fitted = true;
-      }
-    }
-  }
-  fit.centre = centre;
-  fit.fitted = fitted;
-  std::vector<double> r;
-  for (const auto& m : means) r.push_back((m - centre).norm());
-  double sum = 0.0;
-  for (double v : r) sum += v;
-  fit.radius = sum / static_cast<double>(r.size());
-  double ss = 0.0;
-  for (double v : r) ss += (v - fit.radius) * (v - fit.radius);
-  fit.residual_rms = std::sqrt(ss / static_cast<double>(r.size()));
-  return fit;
-}
-
 CoverageResult AssessCoverage(std::span<const Eigen::Vector3d> means,
                               const CoverageOptions& options) {
   if (const std::string bad = options.Validate(); !bad.empty()) {
-    throw Error("coverage options: " + bad);
+    throw Error(ErrorKind::kOption, "coverage options: " + bad);
   }
   for (std::size_t k = 0; k < means.size(); ++k) {
     if (!means[k].allFinite()) {
-      throw Error(fmt::format("coverage: the mean of position {} is not finite", k + 1));
+      throw Error(ErrorKind::kInput,
+                  fmt::format("coverage: the mean of position {} is not finite", k + 1));
     }
   }
   CoverageResult res;
   res.positions = static_cast<int>(means.size());
   res.normalisation = FitSphere(means, options.units);
-  for (const auto& m : means) {
-    const Eigen::Vector3d d = m - res.normalisation.centre;
-    res.directions.push_back(d.norm() > 0.0 ? Eigen::Vector3d(d.normalized())
-                                            : Eigen::Vector3d::UnitZ());
-  }
+  Directions(means, &res);
   const auto& u = res.directions;
-  for (std::size_t k = 0; k < u.size(); ++k) {
-    res.angle_to_previous_deg.push_back(k == 0 ? std::numeric_limits<double>::quiet_NaN()
-                                               : AngleDeg(u[k], u[k - 1]));
-  }
-
-  // Canonical directions covered.
-  const auto& canon = CanonicalDirections();
-  for (std::size_t c = 0; c < canon.size(); ++c) {
-    const bool hit = std::any_of(u.begin(), u.end(), [&](const Eigen::Vector3d& v) {
-      return AngleDeg(v, canon[c].direction) <= options.near_deg;
-    });
-    (hit ? res.covered : res.missing).push_back(static_cast<int>(c));
-  }
-
-  // Per axis: tilts visited.
+  CoverCanonical(u, options.near_deg, &res);
   for (int i = 0; i < 3; ++i) {
-    AxisCoverage& ax = res.axes[static_cast<std::size_t>(i)];
-    std::vector<double> tilt{0.0, 180.0};
-    for (const auto& v : u) {
-      const double up = AngleDeg(v, Eigen::Vector3d::Unit(i));
-      ax.closest_up_deg = std::min(ax.closest_up_deg, up);
-      ax.closest_down_deg = std::min(ax.closest_down_deg, 180.0 - up);
-      tilt.push_back(up);
-    }
-    ax.near_up = ax.closest_up_deg <= options.near_deg;
-    ax.near_down = ax.closest_down_deg <= options.near_deg;
-    std::sort(tilt.begin(), tilt.end());
-    ax.largest_gap_deg = 0.0;
-    for (std::size_t k = 1; k < tilt.size(); ++k) {
-      ax.largest_gap_deg = std::max(ax.largest_gap_deg, tilt[k] - tilt[k - 1]);
-    }
+    res.axes[static_cast<std::size_t>(i)] = AxisTilts(u, i, options.near_deg);
   }
-
-  // Distinct orientations: greedy grouping within distinct_deg.
-  std::vector<Eigen::Vector3d> distinct;
-  for (const auto& v : u) {
-    const bool seen = std::any_of(distinct.begin(), distinct.end(), [&](const auto& d) {
-      return AngleDeg(v, d) < options.distinct_deg;
-    });
-    if (!seen) distinct.push_back(v);
-  }
-  res.distinct_positions = static_cast<int>(distinct.size());
-
-  // Largest empty cap, over a Fibonacci lattice of ~2000 directions (about
-  // 2.5° apart: fine enough for advice).
-  {
-    constexpr int kLattice = 2000;
-    const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
-    res.largest_empty_cap_deg = u.empty() ? 180.0 : 0.0;
-    for (int k = 0; k < kLattice && !u.empty(); ++k) {
-      const double z = 1.0 - (2.0 * k + 1.0) / kLattice;
-      const double r = std::sqrt(1.0 - z * z);
-      const Eigen::Vector3d p(r * std::cos(golden * k), r * std::sin(golden * k), z);
-      double nearest = 180.0;
-      for (const auto& v : u) nearest = std::min(nearest, AngleDeg(p, v));
-      if (nearest > res.largest_empty_cap_deg) {
-        res.largest_empty_cap_deg = nearest;
-        res.emptiest_direction = p;
-      }
-    }
-  }
-
+  res.distinct_positions = DistinctCount(u, options.distinct_deg);
+  LargestEmptyCap(u, &res);
   res.observability = Observability(u, options.model);
   const bool nine = options.model == ModelKind::kShinElSheimy9;
-  const int params = ParameterCount(options.model);
   // The paper's 10 for 9 unknowns; the six-position protocol is six poses.
-  res.required_positions = nine ? params + 1 : params;
+  res.required_positions =
+      nine ? ParameterCount(options.model) + 1 : ParameterCount(options.model);
   res.recommended_positions = nine ? 19 : 7;
-  const std::string model_name =
-      nine ? "the 9-parameter model" : "the 6-parameter model (bias-scale-6)";
-  const std::string hold = fmt::format("~{:g} s each, still", options.hold_s);
 
-  // What to record: faces for the axes never up or down first, then missing
-  // corners and edges (they tilt every axis at once), as many as needed.
-  std::vector<std::string> faces_needed;
-  for (int i = 0; i < 3; ++i) {
-    const AxisCoverage& ax = res.axes[static_cast<std::size_t>(i)];
-    const std::string name(1, static_cast<char>('x' + i));
-    if (!ax.near_up) faces_needed.push_back("-" + name);  // +axis up: -face down
-    if (!ax.near_down) faces_needed.push_back("+" + name);
-  }
-  std::vector<std::string> suggestions;
-  for (const auto& f : faces_needed) suggestions.push_back(f + " face");
-  for (const auto kind :
-       {CanonicalDirection::Kind::kCorner, CanonicalDirection::Kind::kEdge}) {
-    for (int c : res.missing) {
-      if (canon[static_cast<std::size_t>(c)].kind == kind) {
-        suggestions.push_back(canon[static_cast<std::size_t>(c)].down);
-      }
-    }
-  }
-  const int short_by = std::max(res.required_positions - res.positions,
-                                res.recommended_positions - res.distinct_positions);
-  auto pick = [&suggestions](int count) {
-    std::vector<std::string> out(
-        suggestions.begin(),
-        suggestions.begin() +
-            std::min<std::ptrdiff_t>(static_cast<std::ptrdiff_t>(suggestions.size()),
-                                     count));
-    return out;
-  };
-  auto record_advice = [&](int count) -> std::string {
-    count = std::max<int>(count, static_cast<int>(faces_needed.size()));
-    // Name at most 8: a longer list is not read.
-    constexpr int kMaxNamed = 8;
-    auto names = pick(std::min(count, kMaxNamed));
-    if (names.empty()) {
-      return fmt::format(
-          "record {} more positions in new orientations ({})", count, hold);
-    }
-    if (count > kMaxNamed) names.push_back(fmt::format("{} more", count - kMaxNamed));
-    return fmt::format("record {} more position{}, e.g. with the {} down ({})",
-                       count,
-                       count == 1 ? "" : "s",
-                       JoinNames(names),
-                       hold);
-  };
-
-  // Problems, worst first.
-  bool not_enough = false;
-  std::string headline;
-  if (res.positions < res.required_positions) {
-    not_enough = true;
-    headline = fmt::format("session has {} static position{}, {} needs at least {}",
-                           res.positions,
-                           res.positions == 1 ? "" : "s",
-                           model_name,
-                           res.required_positions);
-    res.problems.push_back(headline);
-  } else if (res.observability < kNoObservability) {
-    not_enough = true;
-    headline =
-        res.distinct_positions <= params
-            ? fmt::format(
-                  "the {} static positions are only {} distinct orientations, too few to "
-                  "determine the {} parameters of {}",
-                  res.positions,
-                  res.distinct_positions,
-                  params,
-                  model_name)
-            : fmt::format(
-                  "the {} static positions ({} distinct orientations) do not determine "
-                  "all "
-                  "{} parameters of {}: they lie too close to one plane or cone",
-                  res.positions,
-                  res.distinct_positions,
-                  params,
-                  model_name);
-    res.problems.push_back(headline);
-  }
-  if (nine && res.distinct_positions < res.recommended_positions) {
-    res.problems.push_back(fmt::format(
-        "{} distinct orientations; the paper recommends more than 18 spanning the sphere",
-        res.distinct_positions));
-  }
-  if (!nine && res.positions == params) {
-    res.problems.push_back(
-        "six positions for six parameters fit exactly: nothing checks the fit (a seventh "
-        "position would)");
-  }
-  for (int i = 0; i < 3; ++i) {
-    const AxisCoverage& ax = res.axes[static_cast<std::size_t>(i)];
-    const char name = static_cast<char>('x' + i);
-    if (!ax.near_up) {
-      res.problems.push_back(fmt::format(
-          "+{} never pointed up (closest {:.0f} deg)", name, ax.closest_up_deg));
-    }
-    if (!ax.near_down) {
-      res.problems.push_back(fmt::format(
-          "+{} never pointed down (closest {:.0f} deg)", name, ax.closest_down_deg));
-    }
-  }
-  if (!not_enough && res.observability < kWeakObservability) {
-    res.problems.push_back(fmt::format(
-        "the positions determine some parameters poorly (observability {:.3g})",
-        res.observability));
-  }
+  std::size_t faces = 0;
+  std::vector<std::string> suggestions = Suggestions(res, &faces);
+  const std::optional<CoverageProblem> main = NotEnoughProblem(res, options.model);
+  if (main) res.problems.push_back(*main);
+  WeakProblems(res, options.model, main.has_value(), &res.problems);
   if (nine && !u.empty() && res.largest_empty_cap_deg > 45.0) {
-    // The canonical direction nearest the emptiest spot, for the advice.
-    const auto nearest =
-        std::min_element(canon.begin(), canon.end(), [&](const auto& l, const auto& r) {
-          return AngleDeg(l.direction, res.emptiest_direction) <
-                 AngleDeg(r.direction, res.emptiest_direction);
-        });
-    res.problems.push_back(
-        fmt::format("no position within {:.0f} deg of the orientation with the {} down",
-                    res.largest_empty_cap_deg,
-                    nearest->down));
-    // Suggested first after the faces: it fills the largest hole.
-    const auto first =
-        suggestions.begin() + static_cast<std::ptrdiff_t>(faces_needed.size());
-    if (std::find(suggestions.begin(), first, nearest->down) == first) {
-      const auto at = std::find(first, suggestions.end(), nearest->down);
-      if (at != suggestions.end()) suggestions.erase(at);
-      suggestions.insert(
-          suggestions.begin() + static_cast<std::ptrdiff_t>(faces_needed.size()),
-          nearest->down);
-    }
+    EmptyCapProblem(res, faces, &suggestions, &res.problems);
   }
-
-  if (not_enough) {
-    res.verdict = CoverageVerdict::kNotEnough;
-    const int more = std::max(1,
-                              res.positions < res.required_positions
-                                  ? res.required_positions - res.positions
-                                  : short_by);
-    res.advice.push_back(record_advice(more));
-    if (nine && res.positions >= ParameterCount(ModelKind::kBiasScale6)) {
-      res.advice.push_back(
-          "or calibrate bias and scale only with --model bias-scale-6 (six-position "
-          "protocol: each axis up and down)");
-    }
-    res.summary = NotEnoughSummary(res);
-  } else if (!res.problems.empty()) {
-    res.verdict = CoverageVerdict::kUsableWithWarnings;
-    if (short_by > 0 || !faces_needed.empty() || !suggestions.empty()) {
-      res.advice.push_back(record_advice(std::max(1, short_by)));
-    }
-    res.summary =
-        fmt::format("usable with warnings: {}; to improve, {}",
-                    res.problems.front(),
-                    res.advice.empty() ? "record more orientations" : res.advice.front());
-  } else {
-    res.verdict = CoverageVerdict::kGood;
-    res.summary = fmt::format(
-        "good: {} static positions ({} distinct), {} of 26 cube directions covered, "
-        "every "
-        "axis near up and near down",
-        res.positions,
-        res.distinct_positions,
-        res.covered.size());
-  }
+  Verdict(options, main.has_value(), suggestions, faces, &res);
   return res;
 }
 
@@ -497,16 +419,11 @@ CoverageResult AssessCoverage(const DetectResult& detection,
   // the same way. (A stray pause in a turn is dropped too, and is no advice.)
   if (!res.good_enough() && detection.dropped_short > 0 &&
       static_cast<std::size_t>(detection.dropped_short) >= detection.intervals.size()) {
-    // First in the advice (push and rotate: GCC 12 warns of a null
-    // dereference in its own code for an insert at the front).
-    res.advice.push_back(fmt::format(
-        "{} still stretch{} shorter than the minimum (--min-static) {} dropped: "
-        "hold each position longer",
-        detection.dropped_short,
-        detection.dropped_short == 1 ? "" : "es",
-        detection.dropped_short == 1 ? "was" : "were"));
-    std::rotate(res.advice.rbegin(), res.advice.rbegin() + 1, res.advice.rend());
-    res.summary = NotEnoughSummary(res);
+    CoverageStep hold;
+    hold.kind = CoverageStepKind::kHoldLonger;
+    hold.dropped_short = detection.dropped_short;
+    hold.advice.settings.push_back({Option::kDetectMinStatic, ""});
+    res.advice.insert(res.advice.begin(), hold);
   }
   return res;
 }

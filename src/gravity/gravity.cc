@@ -11,16 +11,20 @@ namespace mpcal {
 
 double NormalGravityMps2(double latitude_deg, double height_m) {
   if (!std::isfinite(latitude_deg) || std::abs(latitude_deg) > 90.0) {
-    throw Error(fmt::format(
-        "latitude {} deg is outside -90..90; give the geodetic latitude in degrees",
-        latitude_deg));
+    throw Error(ErrorKind::kOption,
+                fmt::format("latitude {} deg is outside -90..90; give the geodetic "
+                            "latitude in degrees",
+                            latitude_deg),
+                Advice{{{Option::kLatitude, ""}}, Stage::kNone, ""});
   }
   // Normal gravity is defined near the ellipsoid; beyond ±100 km a height is
   // almost surely a unit mistake (mm, feet) rather than a real site.
   if (!std::isfinite(height_m) || std::abs(height_m) > 100e3) {
-    throw Error(fmt::format(
-        "height {} m is outside -100..100 km; give the ellipsoidal height in metres",
-        height_m));
+    throw Error(ErrorKind::kOption,
+                fmt::format("height {} m is outside -100..100 km; give the ellipsoidal "
+                            "height in metres",
+                            height_m),
+                Advice{{{Option::kHeight, ""}}, Stage::kNone, ""});
   }
   double gamma_north_mps2 = 0.0;
   double gamma_up_mps2 = 0.0;

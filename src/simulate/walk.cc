@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "mpcal/error.h"
+#include "mpcal/gravity.h"
 #include "mpcal/simulate_walk.h"
 #include "random.h"
 
@@ -155,7 +156,7 @@ SimulatedWalk SimulateWalk(const SimulateWalkOptions& o, double gravity_mps2) {
   if (const std::string p = o.Validate(); !p.empty()) {
     throw Error("simulate walk: " + p);
   }
-  if (!std::isfinite(gravity_mps2) || gravity_mps2 < 9.0 || gravity_mps2 > 10.5) {
+  if (!IsPlausibleGravity(gravity_mps2)) {
     throw Error(fmt::format("simulate walk: gravity {} m/s2 is not a gravity magnitude",
                             gravity_mps2));
   }

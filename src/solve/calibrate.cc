@@ -3,13 +3,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
+#include <Eigen/Geometry>
 
 #include "mpcal/coverage.h"
 #include "mpcal/error.h"
+#include "mpcal/gravity.h"
 #include "mpcal/plausible.h"
+#include "mpcal/sphere_fit.h"
 
 namespace mpcal {
 namespace {
@@ -32,36 +38,180 @@ double MedianMagnitude(const Recording& recording) {
   return m[m.size() / 2];
 }
 
+// The mean gyroscope reading over a position (raw units): its bias at rest.
+Eigen::Vector3d GyroMean(const Recording& r, const StaticInterval& iv) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (std::size_t i = iv.begin; i < iv.end; ++i) sum += r.gyro_radps[i];
+  return sum / static_cast<double>(iv.end - iv.begin);
+}
+
+// One turn's samples and the directions of gravity at its two ends.
+struct TurnSpan {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  Eigen::Vector3d bias_raw = Eigen::Vector3d::Zero();
+  Eigen::Vector3d u_from = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d u_to = Eigen::Vector3d::UnitZ();
+};
+
+Eigen::Matrix3d TurnRotation(const Recording& r, const TurnSpan& span, double scale) {
+  GyroCalibration nominal;
+  nominal.input_units = r.gyro_units;
+  nominal.radps_per_unit = scale;
+  nominal.bias_radps = span.bias_raw * scale;
+  return IntegrateRotation(r, span.begin, span.end, nominal);
+}
+
+double AngleBetweenDeg(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  return std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / std::numbers::pi;
+}
+
+// Sum of the squared tilts (deg²) between each gravity direction carried
+// over its turn at `scale` and the one measured after it.
+double TiltCost(const Recording& r, const std::vector<TurnSpan>& spans, double scale) {
+  double cost = 0.0;
+  for (const TurnSpan& span : spans) {
+    const Eigen::Matrix3d rot = TurnRotation(r, span, scale);
+    const double tilt = AngleBetweenDeg(rot.transpose() * span.u_from, span.u_to);
+    cost += tilt * tilt;
+  }
+  return cost;
+}
+
+// The one common scale of raw counts (rad/s per count) that best carries the
+// directions over the turns: a log grid from 1e-7 to 1e-1 (the step, 19 %,
+// keeps a 90 deg turn within 17 deg of its basin), then golden section.
+double CountsScale(const Recording& r, const std::vector<TurnSpan>& spans) {
+  constexpr int kGrid = 80;
+  constexpr double kLogLo = -7.0;
+  constexpr double kLogHi = -1.0;
+  const double step = (kLogHi - kLogLo) / kGrid;
+  double best_log = kLogLo;
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= kGrid; ++k) {
+    const double l = kLogLo + k * step;
+    const double c = TiltCost(r, spans, std::pow(10.0, l));
+    if (c < best) {
+      best = c;
+      best_log = l;
+    }
+  }
+  double lo = best_log - step;
+  double hi = best_log + step;
+  const double ratio = (std::sqrt(5.0) - 1.0) / 2.0;
+  for (int it = 0; it < 40; ++it) {
+    const double a = hi - ratio * (hi - lo);
+    const double b = lo + ratio * (hi - lo);
+    if (TiltCost(r, spans, std::pow(10.0, a)) < TiltCost(r, spans, std::pow(10.0, b))) {
+      hi = b;
+    } else {
+      lo = a;
+    }
+  }
+  return std::pow(10.0, 0.5 * (lo + hi));
+}
+
 }  // namespace
 
-void CheckUnits(const Recording& recording, double gravity_mps2) {
-  if (recording.empty() || recording.units == AccelUnits::kCounts) return;
-  const AccelUnits units = recording.units;
-  const std::string& source = recording.source;
-  const double ratio =
-      MedianMagnitude(recording) * *FixedMps2PerUnit(units) / gravity_mps2;
-  if (ratio >= kPlausibleRestRatioLow && ratio <= kPlausibleRestRatioHigh) return;
-  const double as_read = ratio * gravity_mps2 / *FixedMps2PerUnit(units);
-  std::string hint = "check --units and --columns";
-  const double g_if_mps2 = ratio * gravity_mps2 / kStandardGravityMps2;
-  if (units == AccelUnits::kMps2 && std::abs(as_read - 1.0) < 0.5) {
-    hint = "the readings look like g: add --units g";
-  } else if (units == AccelUnits::kG &&
-             std::abs(as_read / kStandardGravityMps2 - 1.0) < 0.5) {
-    hint = "the readings look like m/s2: use --units mps2";
-  } else if (g_if_mps2 > 20.0) {
-    hint = "the readings look like raw ADC counts: add --units counts";
+std::vector<Turn> MeasureTurns(const Recording& recording,
+                               std::span<const StaticInterval> intervals,
+                               double* scale_radps_per_unit) {
+  std::vector<Turn> turns;
+  if (recording.gyro_radps.empty() || intervals.size() < 2) return turns;
+  for (const StaticInterval& iv : intervals) {
+    if (!(iv.begin < iv.end) || iv.end > recording.gyro_radps.size()) {
+      throw Error(ErrorKind::kInput,
+                  fmt::format("{}: a position (samples {}-{}) lies outside the {} "
+                              "gyroscope samples",
+                              recording.source,
+                              iv.begin,
+                              iv.end,
+                              recording.gyro_radps.size()));
+    }
   }
-  throw Error(fmt::format(
+  std::vector<Eigen::Vector3d> means;
+  for (const StaticInterval& iv : intervals) means.push_back(iv.mean);
+  const Eigen::Vector3d centre = FitSphere(means, recording.units).centre;
+  std::vector<TurnSpan> spans;
+  for (std::size_t k = 0; k + 1 < intervals.size(); ++k) {
+    TurnSpan span;
+    span.begin = intervals[k].end - 1;
+    span.end = intervals[k + 1].begin;
+    span.bias_raw =
+        0.5 * (GyroMean(recording, intervals[k]) + GyroMean(recording, intervals[k + 1]));
+    span.u_from = (intervals[k].mean - centre).normalized();
+    span.u_to = (intervals[k + 1].mean - centre).normalized();
+    spans.push_back(span);
+  }
+  const auto fixed = FixedRadpsPerUnit(recording.gyro_units);
+  const double scale = fixed ? *fixed : CountsScale(recording, spans);
+  if (scale_radps_per_unit != nullptr) *scale_radps_per_unit = scale;
+  for (std::size_t k = 0; k < spans.size(); ++k) {
+    const Eigen::AngleAxisd rotation(TurnRotation(recording, spans[k], scale));
+    Turn turn;
+    turn.from = k;
+    turn.start_s = recording.time_s[spans[k].begin];
+    turn.end_s = recording.time_s[spans[k].end];
+    turn.angle_deg = rotation.angle() * 180.0 / std::numbers::pi;
+    turn.axis = rotation.axis();
+    turn.tilt_deg = AngleBetweenDeg(spans[k].u_from, spans[k].u_to);
+    turns.push_back(turn);
+  }
+  return turns;
+}
+
+void CheckUnits(const Recording& recording, double gravity_mps2) {
+  if (!IsPlausibleGravity(gravity_mps2)) {
+    throw Error(ErrorKind::kOption,
+                fmt::format("gravity {} m/s2 is outside the plausible {}-{} m/s2",
+                            gravity_mps2,
+                            kMinGravityMps2,
+                            kMaxGravityMps2),
+                Advice{{{Option::kGravity, ""}}, Stage::kNone, ""});
+  }
+  if (recording.empty() || recording.units == AccelUnits::kCounts) return;
+  UnitsError::Finding f;
+  f.source = recording.source;
+  f.units = recording.units;
+  f.gravity_mps2 = gravity_mps2;
+  const double per_unit = *FixedMps2PerUnit(f.units);
+  const double ratio = MedianMagnitude(recording) * per_unit / gravity_mps2;
+  if (ratio >= kPlausibleRestRatioLow && ratio <= kPlausibleRestRatioHigh) return;
+  f.median_magnitude = ratio * gravity_mps2 / per_unit;
+  Advice advice;
+  std::string looks;
+  if (f.units == AccelUnits::kMps2 && std::abs(f.median_magnitude - 1.0) < 0.5) {
+    f.guess = UnitsGuess::kG;
+    looks = "g";
+  } else if (f.units == AccelUnits::kG &&
+             std::abs(f.median_magnitude / kStandardGravityMps2 - 1.0) < 0.5) {
+    f.guess = UnitsGuess::kMps2;
+    looks = "m/s2";
+  } else if (ratio * gravity_mps2 / kStandardGravityMps2 > 20.0) {
+    f.guess = UnitsGuess::kCounts;
+    looks = "raw ADC counts";
+  }
+  if (f.guess == UnitsGuess::kUnknown) {
+    advice.settings = {{Option::kLogUnits, ""}, {Option::kLogColumns, ""}};
+  } else {
+    const AccelUnits guessed = f.guess == UnitsGuess::kG      ? AccelUnits::kG
+                               : f.guess == UnitsGuess::kMps2 ? AccelUnits::kMps2
+                                                              : AccelUnits::kCounts;
+    advice.settings = {{Option::kLogUnits, std::string(ToString(guessed))}};
+  }
+  const std::string facts = fmt::format(
       "{}: the readings have a median magnitude of {:.4g} {}, but gravity is {:.5g} m/s2 "
-      "({:.4g} {}); {}",
-      source,
-      as_read,
-      ToString(units),
+      "({:.4g} {})",
+      f.source,
+      f.median_magnitude,
+      ToString(f.units),
       gravity_mps2,
-      gravity_mps2 / *FixedMps2PerUnit(units),
-      ToString(units),
-      hint));
+      gravity_mps2 / per_unit,
+      ToString(f.units));
+  throw UnitsError(f,
+                   looks.empty() ? facts + "; check the units and the columns"
+                                 : facts + "; the readings look like " + looks,
+                   std::move(advice));
 }
 
 std::string CalibrateOptions::Validate() const {
@@ -79,69 +229,79 @@ std::string CalibrateOptions::Validate() const {
   return "";
 }
 
-CalibrateResult CalibrateRecording(const Recording& recording,
-                                   const CalibrateOptions& options) {
-  if (const std::string problem = options.Validate(); !problem.empty()) {
-    throw Error("calibration options: " + problem);
+namespace {
+
+// Throws a SessionError unless the detection found enough positions for
+// the model.
+void RequireEnoughPositions(const Recording& recording,
+                            const DetectResult& detection,
+                            const CalibrateOptions& options) {
+  const auto& intervals = detection.intervals;
+  if (intervals.empty()) {
+    throw SessionError(SessionProblem::kNoPositions,
+                       recording.source,
+                       detection,
+                       {},
+                       Describe(detection.finding),
+                       detection.finding.advice);
   }
-  CalibrateResult result;
-  CheckUnits(recording, options.solve.gravity_mps2);
-  result.detection = DetectStatic(recording, options.detect);
-  const auto& intervals = result.detection.intervals;
-  if (intervals.empty()) throw Error(result.detection.message);
-  const int needed = ParameterCount(options.solve.model);
-  if (static_cast<int>(intervals.size()) < needed) {
+  if (static_cast<int>(intervals.size()) < ParameterCount(options.solve.model)) {
     CoverageOptions coverage;
     coverage.model = options.solve.model;
     coverage.units = recording.units;
-    throw Error(fmt::format("{}: {}; run 'mpcal detect {}' to see the positions found",
-                            recording.source,
-                            AssessCoverage(result.detection, coverage).summary,
-                            recording.source));
+    CoverageResult assessed = AssessCoverage(detection, coverage);
+    const std::string what = fmt::format("{}: {}", recording.source, Summary(assessed));
+    throw SessionError(SessionProblem::kTooFewPositions,
+                       recording.source,
+                       detection,
+                       std::move(assessed),
+                       what,
+                       Advice{{}, Stage::kDetect, recording.source});
   }
+}
 
-  // Raw counts: the nominal scale is the radius of the sphere the position
-  // means lie on, so that the model's scale-factor errors stay small numbers
-  // and the six-position initialisation works as for any other unit.
+// Raw counts: the nominal scale is the radius of the sphere the position
+// means lie on, so that the model's scale-factor errors stay small numbers
+// and the six-position initialisation works as for any other unit. Returns
+// the nominal offset (m/s²) and sets result->mps2_per_unit.
+Eigen::Vector3d NominalScale(const Recording& recording,
+                             const CalibrateOptions& options,
+                             CalibrateResult* result) {
+  const auto& intervals = result->detection.intervals;
   Eigen::Vector3d nominal_offset_mps2 = Eigen::Vector3d::Zero();
   if (const auto fixed = FixedMps2PerUnit(recording.units)) {
-    result.mps2_per_unit = *fixed;
+    result->mps2_per_unit = *fixed;
   } else {
     std::vector<Eigen::Vector3d> means;
     for (const auto& in : intervals) means.push_back(in.mean);
     const SphereFit sphere = FitSphere(means, AccelUnits::kCounts);
     if (!sphere.fitted || !(sphere.radius > 0.0)) {
-      throw Error(fmt::format(
-          "{}: the {} static positions do not spread over the sphere, so the offset and "
-          "scale of the raw counts cannot be found from them; record positions with each "
-          "axis up and down (run 'mpcal detect {} --units counts')",
+      throw SessionError(
+          SessionProblem::kCountsNotSpread,
           recording.source,
-          intervals.size(),
-          recording.source));
+          result->detection,
+          {},
+          fmt::format("{}: the {} static positions do not spread over the sphere, so the "
+                      "offset and scale of the raw counts cannot be found from them; "
+                      "record positions with each axis up and down",
+                      recording.source,
+                      intervals.size()),
+          Advice{{{Option::kLogUnits, "counts"}}, Stage::kDetect, recording.source});
     }
-    result.mps2_per_unit = options.counts_per_g > 0.0
-                               ? kStandardGravityMps2 / options.counts_per_g
-                               : options.solve.gravity_mps2 / sphere.radius;
-    nominal_offset_mps2 = sphere.centre * result.mps2_per_unit;
+    result->mps2_per_unit = options.counts_per_g > 0.0
+                                ? kStandardGravityMps2 / options.counts_per_g
+                                : options.solve.gravity_mps2 / sphere.radius;
+    nominal_offset_mps2 = sphere.centre * result->mps2_per_unit;
   }
 
-  for (const auto& in : intervals) {
-    PositionObservation p;
-    p.mean_mps2 = in.mean * result.mps2_per_unit;
-    p.sample_std_mps2 = in.std * result.mps2_per_unit;
-    p.samples = in.samples();
-    p.start_s = in.start_s;
-    p.end_s = in.end_s;
-    result.positions.push_back(p);
-  }
+  return nominal_offset_mps2;
+}
 
-  SolveOptions solve = options.solve;
-  solve.nominal_offset_mps2 = nominal_offset_mps2;
-  result.solve = Solve(result.positions, solve);
-  result.warnings = result.detection.warnings;  // positions dropped for clipping
-  result.warnings.insert(
-      result.warnings.end(), result.solve.warnings.begin(), result.solve.warnings.end());
-
+// The calibration file's content from the solve.
+void Package(const Recording& recording,
+             const CalibrateOptions& options,
+             CalibrateResult* result_ptr) {
+  CalibrateResult& result = *result_ptr;
   Calibration& c = result.calibration;
   c.model_kind = options.solve.model;
   c.gravity_mps2 = options.solve.gravity_mps2;
@@ -186,9 +346,16 @@ CalibrateResult CalibrateRecording(const Recording& recording,
     c.positions.push_back(s);
   }
   c.warnings = result.warnings;
+}
 
-  // The gyroscope from the turns between the same positions, with the
-  // gravity directions of the accelerometer just calibrated.
+// The gyroscope from the turns between the same positions, with the gravity
+// directions of the accelerometer just calibrated.
+void CalibrateGyroscopeToo(const Recording& recording,
+                           const CalibrateOptions& options,
+                           CalibrateResult* result_ptr) {
+  CalibrateResult& result = *result_ptr;
+  const auto& intervals = result.detection.intervals;
+  Calibration& c = result.calibration;
   if (options.calibrate_gyroscope && !recording.gyro_radps.empty() &&
       result.solve.converged()) {
     // The accelerometer's calibration stands without it: a gyroscope that
@@ -201,6 +368,42 @@ CalibrateResult CalibrateRecording(const Recording& recording,
       c.warnings = result.warnings;
     }
   }
+}
+
+}  // namespace
+
+CalibrateResult CalibrateRecording(const Recording& recording,
+                                   const CalibrateOptions& options) {
+  if (const std::string problem = options.Validate(); !problem.empty()) {
+    throw Error(ErrorKind::kOption, "calibration options: " + problem);
+  }
+  CalibrateResult result;
+  CheckUnits(recording, options.solve.gravity_mps2);
+  result.detection = DetectStatic(recording, options.detect);
+  RequireEnoughPositions(recording, result.detection, options);
+  const Eigen::Vector3d nominal_offset_mps2 = NominalScale(recording, options, &result);
+  const auto& intervals = result.detection.intervals;
+  for (const auto& in : intervals) {
+    PositionObservation p;
+    p.mean_mps2 = in.mean * result.mps2_per_unit;
+    p.sample_std_mps2 = in.std * result.mps2_per_unit;
+    p.samples = in.samples();
+    p.start_s = in.start_s;
+    p.end_s = in.end_s;
+    result.positions.push_back(p);
+  }
+
+  SolveOptions solve = options.solve;
+  solve.nominal_offset_mps2 = nominal_offset_mps2;
+  result.solve = Solve(result.positions, solve);
+  // Positions dropped for clipping, then the solver's.
+  for (const auto& note : result.detection.notes)
+    result.warnings.push_back(Describe(note));
+  result.warnings.insert(
+      result.warnings.end(), result.solve.warnings.begin(), result.solve.warnings.end());
+
+  Package(recording, options, &result);
+  CalibrateGyroscopeToo(recording, options, &result);
   return result;
 }
 

@@ -51,3 +51,25 @@ mpcal_cli_test(detect_gyro_units_dps EXIT 0 MATCH "verdict: good"
 mpcal_cli_test(detect_gyro_units_unknown EXIT 2
   MATCH "mpcal: error: --gyro-units: 'rpm' is not one of: rads, rad/s, dps, deg/s"
   ARGS detect ${_ferraris} --rate 102.4 --gyro-units rpm)
+
+# With the gyroscope (imu_tk's Xsens recording, raw counts in a file of its
+# own): the 37 turns between the 38 positions, in degrees. The nominal scale
+# fitted to the tilts agrees with imu_tk's 2.09e-4 rad/s per count, and the
+# first turn is a quarter turn about the y axis, as its 90.6 deg tilt says.
+set(_xsens_gyro ${MPCAL_REAL_DATA}/xsens-multiposition/xsens_gyro.mat)
+mpcal_cli_test(detect_xsens_turns EXIT 0
+  MATCH "^  1-2 +51\\.66 +3\\.85 +89\\.[0-9] +-0\\.0[0-9]+ +1\\.000 +0\\.0[0-9]+ +90\\.6"
+  ARGS detect ${_xsens} --gyro-log ${_xsens_gyro} --units counts --gyro-units counts)
+mpcal_cli_test(detect_xsens_turn_count EXIT 0 MATCH "^37-38 "
+  ARGS detect ${_xsens} --gyro-log ${_xsens_gyro} --units counts --gyro-units counts)
+mpcal_cli_test(detect_xsens_turn_scale EXIT 0
+  MATCH "nominal scale 0\\.000208[0-9] rad/s per count, fitted to the tilts"
+  ARGS detect ${_xsens} --gyro-log ${_xsens_gyro} --units counts --gyro-units counts)
+# The turns in the JSON report too: 37 of them, the first a quarter turn.
+add_test(NAME cli.detect_xsens_turns_json
+  COMMAND ${MPCAL_CLI_EXPECT} 0 "^37 89\\.[0-9]"
+          --workdir ${CMAKE_CURRENT_BINARY_DIR}/detect_xsens_turns_json
+          -- sh -c "\"$0\" detect '${_xsens}' --gyro-log '${_xsens_gyro}' --units counts --gyro-units counts --json p.json >/dev/null && exec python3 -c 'import json; t = json.load(open(\"p.json\"))[\"turns\"]; print(len(t), round(t[0][\"angle_deg\"], 1))'"
+          $<TARGET_FILE:mpcal_cli>)
+set_tests_properties(cli.detect_xsens_turns_json PROPERTIES LABELS cli)
+mpcal_cli_test(detect_help_gyro EXIT 0 MATCH "--gyro-log xsens_gyro.mat" ARGS detect --help)

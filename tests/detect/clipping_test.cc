@@ -9,12 +9,15 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "findings.h"
 #include "mpcal/detect.h"
 #include "mpcal/error.h"
 
 namespace mpcal {
 namespace {
 
+using test::Names;
+using test::Words;
 using ::testing::HasSubstr;
 
 constexpr double kG = 9.80665;
@@ -96,13 +99,14 @@ TEST(Clipping, RangeBelowOneGDropsThePositionsAtTheLimitAndNamesTheirTimes) {
   for (const StaticInterval& iv : r.intervals) {
     EXPECT_LT(iv.mean.cwiseAbs().maxCoeff(), 0.99 * limit);
   }
-  ASSERT_EQ(r.warnings.size(), 6u);
-  EXPECT_THAT(r.warnings[0], HasSubstr("range limit"));
+  ASSERT_EQ(Words(r.notes).size(), 6u);
+  EXPECT_THAT(Words(r.notes)[0], HasSubstr("range limit"));
   // In time order: the six faces come first.
   for (int k = 0; k < 6; ++k) {
-    EXPECT_GE(WarnedStartS(r.warnings[k]), s.position_start_s[k] - 0.05) << r.warnings[k];
-    EXPECT_LT(WarnedStartS(r.warnings[k]), s.position_start_s[k] + kDwellS)
-        << r.warnings[k];
+    EXPECT_GE(WarnedStartS(Words(r.notes)[k]), s.position_start_s[k] - 0.05)
+        << Words(r.notes)[k];
+    EXPECT_LT(WarnedStartS(Words(r.notes)[k]), s.position_start_s[k] + kDwellS)
+        << Words(r.notes)[k];
   }
   EXPECT_GT(r.clipped_samples, 6u * static_cast<std::size_t>(kDwellS * kRateHz) / 2);
 }
@@ -131,11 +135,12 @@ TEST(Clipping, ALimitFoundFromTheDataDropsAPositionPinnedAtIt) {
   // +z (index 4) and the four corners with +z all read more than 1.58 g; only
   // the face is pinned.
   EXPECT_EQ(r.dropped_clipped, 1);
-  ASSERT_EQ(r.warnings.size(), 1u);
-  EXPECT_THAT(r.warnings[0], HasSubstr("z >= 19.6133"));
-  EXPECT_GE(WarnedStartS(r.warnings[0]), s.position_start_s[4] - 0.05) << r.warnings[0];
-  EXPECT_LT(WarnedStartS(r.warnings[0]), s.position_start_s[4] + kDwellS)
-      << r.warnings[0];
+  ASSERT_EQ(Words(r.notes).size(), 1u);
+  EXPECT_THAT(Words(r.notes)[0], HasSubstr("z >= 19.6133"));
+  EXPECT_GE(WarnedStartS(Words(r.notes)[0]), s.position_start_s[4] - 0.05)
+      << Words(r.notes)[0];
+  EXPECT_LT(WarnedStartS(Words(r.notes)[0]), s.position_start_s[4] + kDwellS)
+      << Words(r.notes)[0];
   for (const StaticInterval& iv : r.intervals) EXPECT_LT(iv.mean.z(), 0.99 * limit);
 }
 
@@ -147,7 +152,7 @@ TEST(Clipping, QuantisedStillReadingsAtOneGAreNotClipping) {
   });
   const DetectResult r = DetectStatic(s.recording, DetectOptions{});
   EXPECT_EQ(r.clipped_samples, 0u);
-  EXPECT_TRUE(r.warnings.empty());
+  EXPECT_TRUE(Words(r.notes).empty());
   EXPECT_EQ(r.intervals.size(), Directions().size());
 }
 
@@ -160,8 +165,9 @@ TEST(Clipping, AllPositionsClippedGivesAMessageThatSaysSo) {
   const DetectResult r = DetectStatic(s.recording, options);
   EXPECT_TRUE(r.intervals.empty());
   EXPECT_EQ(r.dropped_clipped, 2);
-  EXPECT_THAT(r.message, HasSubstr("range limit"));
-  EXPECT_THAT(r.message, HasSubstr("--range"));
+  EXPECT_EQ(r.finding.kind, DetectOutcome::kAllClipped);
+  EXPECT_THAT(Describe(r.finding), HasSubstr("range limit"));
+  EXPECT_TRUE(Names(r.finding.advice, Option::kSensorRange));
 }
 
 TEST(Clipping, NegativeOrNonFiniteRangeIsRejected) {

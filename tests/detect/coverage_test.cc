@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
+#include "findings.h"
 #include "mpcal/error.h"
 #include "mpcal/log_reader.h"
 #include "test_util.h"
@@ -17,6 +18,8 @@
 namespace mpcal {
 namespace {
 
+using test::Names;
+using test::Words;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::Not;
@@ -117,7 +120,7 @@ TEST(AssessCoverage, TheTwentySixCubePositionsAreGood) {
   o.units = AccelUnits::kCounts;
   const CoverageResult r = AssessCoverage(
       Readings(Cube26(), 4000.0, Eigen::Vector3d::Constant(32900), 5.0), o);
-  EXPECT_EQ(r.verdict, CoverageVerdict::kGood) << r.summary;
+  EXPECT_EQ(r.verdict, CoverageVerdict::kGood) << Summary(r);
   EXPECT_TRUE(r.good_enough());
   EXPECT_EQ(r.covered.size(), 26u);
   EXPECT_TRUE(r.missing.empty());
@@ -133,7 +136,7 @@ TEST(AssessCoverage, TheTwentySixCubePositionsAreGood) {
   EXPECT_GT(r.observability, 0.1);
   EXPECT_TRUE(r.problems.empty());
   EXPECT_TRUE(r.advice.empty());
-  EXPECT_THAT(r.summary, HasSubstr("good: 26 static positions"));
+  EXPECT_THAT(Summary(r), HasSubstr("good: 26 static positions"));
   EXPECT_EQ(r.required_positions, 10);
 }
 
@@ -148,7 +151,7 @@ TEST(AssessCoverage, SixFacesAreNotEnoughForNineParameters) {
   EXPECT_FALSE(r.good_enough());
   EXPECT_EQ(r.distinct_positions, 6);
   EXPECT_THAT(
-      r.summary,
+      Summary(r),
       AllOf(HasSubstr("session has 7 static positions, the 9-parameter model needs at "
                       "least 10: record 3 more positions"),
             HasSubstr("corner"),
@@ -157,19 +160,24 @@ TEST(AssessCoverage, SixFacesAreNotEnoughForNineParameters) {
   CoverageOptions six;
   six.model = ModelKind::kBiasScale6;
   const CoverageResult r6 = AssessCoverage(means, six);
-  EXPECT_EQ(r6.verdict, CoverageVerdict::kGood) << r6.summary;
+  EXPECT_EQ(r6.verdict, CoverageVerdict::kGood) << Summary(r6);
   EXPECT_EQ(r6.required_positions, 6);
   // The six poses alone fit exactly: usable, with the warning that nothing
   // checks them.
   const std::vector<Eigen::Vector3d> six_poses(means.begin(), means.begin() + 6);
   const CoverageResult exact = AssessCoverage(six_poses, six);
-  EXPECT_EQ(exact.verdict, CoverageVerdict::kUsableWithWarnings) << exact.summary;
-  EXPECT_THAT(exact.problems, ::testing::Contains(HasSubstr("nothing checks the fit")));
+  EXPECT_EQ(exact.verdict, CoverageVerdict::kUsableWithWarnings) << Summary(exact);
+  EXPECT_THAT(Words(exact.problems),
+              ::testing::Contains(HasSubstr("nothing checks the fit")));
   // Under the 9-parameter model the advice offers the six-position protocol
   // once.
   const CoverageResult nine = AssessCoverage(six_poses, {});
-  EXPECT_THAT(nine.summary, HasSubstr("--model bias-scale-6"));
-  EXPECT_EQ(nine.summary.find("bias-scale-6"), nine.summary.rfind("bias-scale-6"));
+  ASSERT_EQ(nine.advice.size(), 2u);
+  EXPECT_EQ(nine.advice[1].kind, CoverageStepKind::kSixParameterModel);
+  ASSERT_TRUE(Names(nine.advice[1].advice, Option::kModel));
+  EXPECT_EQ(nine.advice[1].advice.settings.front().value, "bias-scale-6");
+  EXPECT_THAT(Summary(nine), HasSubstr("6-parameter model"));
+  EXPECT_EQ(Summary(nine).find("6-parameter"), Summary(nine).rfind("6-parameter"));
 }
 
 TEST(AssessCoverage, SaysToHoldLongerWhenPositionsWereDroppedAsTooShort) {
@@ -186,13 +194,13 @@ TEST(AssessCoverage, SaysToHoldLongerWhenPositionsWereDroppedAsTooShort) {
   const CoverageResult r = AssessCoverage(det, {});
   EXPECT_EQ(r.verdict, CoverageVerdict::kNotEnough);
   EXPECT_THAT(
-      r.summary,
+      Summary(r),
       HasSubstr("session has 4 static positions, the 9-parameter model needs at "
                 "least 10: 20 still stretches shorter than the minimum "
                 "(--min-static) were dropped: hold each position longer; record"));
   // Fewer dropped than kept: stray pauses, not the way the session was held.
   det.dropped_short = 3;
-  EXPECT_THAT(AssessCoverage(det, {}).summary,
+  EXPECT_THAT(Summary(AssessCoverage(det, {})),
               Not(HasSubstr("hold each position longer")));
 }
 
@@ -206,15 +214,15 @@ TEST(AssessCoverage, NamesTheFacesNeverDown) {
   ASSERT_EQ(dirs.size(), 11u);
   const CoverageResult r =
       AssessCoverage(Readings(dirs, kG, Eigen::Vector3d::Zero()), {});
-  EXPECT_EQ(r.verdict, CoverageVerdict::kUsableWithWarnings) << r.summary;
+  EXPECT_EQ(r.verdict, CoverageVerdict::kUsableWithWarnings) << Summary(r);
   EXPECT_FALSE(r.axes[1].near_down);
   EXPECT_FALSE(r.axes[2].near_up);
   EXPECT_TRUE(r.axes[0].near_up && r.axes[0].near_down);
-  EXPECT_THAT(r.problems, ::testing::Contains(HasSubstr("+y never pointed down")));
-  EXPECT_THAT(r.problems, ::testing::Contains(HasSubstr("+z never pointed up")));
+  EXPECT_THAT(Words(r.problems), ::testing::Contains(HasSubstr("+y never pointed down")));
+  EXPECT_THAT(Words(r.problems), ::testing::Contains(HasSubstr("+z never pointed up")));
   ASSERT_FALSE(r.advice.empty());
   // Faces first: +y down and -z down.
-  EXPECT_THAT(r.advice.front(),
+  EXPECT_THAT(Describe(r.advice.front()),
               HasSubstr("record 8 more positions, e.g. with the +y face, -z face, "));
 }
 
@@ -229,8 +237,8 @@ TEST(AssessCoverage, PositionsInOnePlaneDoNotDetermineTheModel) {
       AssessCoverage(Readings(dirs, kG, Eigen::Vector3d::Zero()), {});
   EXPECT_EQ(r.verdict, CoverageVerdict::kNotEnough);
   EXPECT_LT(r.observability, 1e-6);
-  EXPECT_THAT(r.summary, HasSubstr("do not determine all 9 parameters"));
-  EXPECT_THAT(r.summary, HasSubstr("face"));
+  EXPECT_THAT(Summary(r), HasSubstr("do not determine all 9 parameters"));
+  EXPECT_THAT(Summary(r), HasSubstr("face"));
 }
 
 TEST(AssessCoverage, TwelveSpreadPositionsAreUsableWithAWarning) {
@@ -241,10 +249,10 @@ TEST(AssessCoverage, TwelveSpreadPositionsAreUsableWithAWarning) {
   }
   const CoverageResult r =
       AssessCoverage(Readings(dirs, kG, Eigen::Vector3d::Zero(), 3.0), {});
-  EXPECT_EQ(r.verdict, CoverageVerdict::kUsableWithWarnings) << r.summary;
-  EXPECT_THAT(r.summary,
+  EXPECT_EQ(r.verdict, CoverageVerdict::kUsableWithWarnings) << Summary(r);
+  EXPECT_THAT(Summary(r),
               HasSubstr("12 distinct orientations; the paper recommends more than 18"));
-  EXPECT_THAT(r.summary, HasSubstr("record 7 more positions"));
+  EXPECT_THAT(Summary(r), HasSubstr("record 7 more positions"));
 }
 
 TEST(AssessCoverage, CountsRepeatedOrientationsOnce) {
@@ -260,7 +268,7 @@ TEST(AssessCoverage, NoPositionAtAllIsNotEnoughAndDoesNotCrash) {
   const CoverageResult r = AssessCoverage(std::vector<Eigen::Vector3d>{}, {});
   EXPECT_EQ(r.verdict, CoverageVerdict::kNotEnough);
   EXPECT_EQ(r.missing.size(), 26u);
-  EXPECT_THAT(r.summary, HasSubstr("session has 0 static positions"));
+  EXPECT_THAT(Summary(r), HasSubstr("session has 0 static positions"));
 }
 
 TEST(AssessCoverage, RejectsBadInput) {
@@ -289,9 +297,9 @@ TEST(AssessCoverage, XsensSessionIsUsableForNineParameters) {
       (r.normalisation.centre - Eigen::Vector3d::Constant(32768)).cwiseAbs().maxCoeff(),
       800.0);
   EXPECT_NEAR(r.normalisation.radius, 4000.0, 200.0);
-  EXPECT_TRUE(r.good_enough()) << r.summary;
+  EXPECT_TRUE(r.good_enough()) << Summary(r);
   for (const AxisCoverage& ax : r.axes) EXPECT_TRUE(ax.near_up && ax.near_down);
-  EXPECT_THAT(r.summary, Not(HasSubstr("needs at least")));
+  EXPECT_THAT(Summary(r), Not(HasSubstr("needs at least")));
 }
 
 }  // namespace

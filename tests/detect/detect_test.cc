@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "findings.h"
 #include "mpcal/error.h"
 #include "mpcal/log_reader.h"
 #include "mpcal/simulate.h"
@@ -20,6 +21,8 @@
 namespace mpcal {
 namespace {
 
+using test::Names;
+using test::Words;
 using ::testing::HasSubstr;
 using testing::RealDataPath;
 
@@ -145,7 +148,7 @@ TEST(DetectStatic, FindsEveryPositionOfAMadeSession) {
   EXPECT_DOUBLE_EQ(r.threshold, 3.0 * r.quiet_level);
   EXPECT_EQ(r.merged, 0);
   EXPECT_EQ(r.window_samples, 101u);
-  EXPECT_TRUE(r.message.empty());
+  EXPECT_EQ(r.finding.kind, DetectOutcome::kFound);
 }
 
 TEST(DetectStatic, TrimsTheSettlingAtBothEnds) {
@@ -263,12 +266,11 @@ TEST(DetectStatic, WarnsWhenEvenTheQuietestStretchesMoveMoreThanAStillSensor) {
   raised.max_still_g = 0.5;
   const DetectResult r = DetectStatic(m.recording, raised);
   ASSERT_FALSE(r.intervals.empty());
-  ASSERT_EQ(r.warnings.size(), 1u);
-  EXPECT_THAT(r.warnings[0],
+  ASSERT_EQ(Words(r.notes).size(), 1u);
+  EXPECT_THAT(Words(r.notes)[0],
               HasSubstr("more than a MEMS accelerometer held still shows"));
   // The same session with a quiet sensor: no warning.
-  EXPECT_TRUE(
-      DetectStatic(Maker{}.Make(CubeFaces(6.0)).recording, raised).warnings.empty());
+  EXPECT_TRUE(DetectStatic(Maker{}.Make(CubeFaces(6.0)).recording, raised).notes.empty());
 }
 
 TEST(DetectStatic, KeepsApartNearbyOrientationsAfterAQuickTurn) {
@@ -365,8 +367,9 @@ TEST(DetectStatic, FindsNothingInARecordingThatNeverStopsMovingAndSaysWhy) {
   EXPECT_TRUE(res.intervals.empty());
   EXPECT_TRUE(res.threshold_capped);
   EXPECT_NEAR(res.threshold, 0.05 * kG, 1e-12);
-  EXPECT_THAT(res.message, HasSubstr("never stops moving"));
-  EXPECT_THAT(res.message, HasSubstr("--max-still"));
+  EXPECT_EQ(res.finding.kind, DetectOutcome::kNeverStill);
+  EXPECT_THAT(Describe(res.finding), HasSubstr("never stops moving"));
+  EXPECT_TRUE(Names(res.finding.advice, Option::kDetectMaxStill));
 }
 
 TEST(DetectStatic, ExplainsPositionsTooShortForTheMinimum) {
@@ -381,8 +384,9 @@ TEST(DetectStatic, ExplainsPositionsTooShortForTheMinimum) {
   // slow ends of the turns give a little back).
   EXPECT_GT(r.longest_still_s, 0.4);
   EXPECT_LT(r.longest_still_s, 1.0);
-  EXPECT_THAT(r.message, HasSubstr("longest still stretch lasts"));
-  EXPECT_THAT(r.message, HasSubstr("--min-static"));
+  EXPECT_EQ(r.finding.kind, DetectOutcome::kTooShort);
+  EXPECT_THAT(Describe(r.finding), HasSubstr("longest still stretch lasts"));
+  EXPECT_TRUE(Names(r.finding.advice, Option::kDetectMinStatic));
   // Following the advice finds them.
   DetectOptions o;
   o.window_s = 0.5;

@@ -19,6 +19,18 @@ namespace {
 
 using ::testing::HasSubstr;
 
+// Whether the coverage's advice offers the 6-parameter model (bias-scale-6).
+bool OffersSixParameterModel(const CoverageResult& coverage) {
+  for (const CoverageStep& step : coverage.advice) {
+    if (step.kind == CoverageStepKind::kSixParameterModel &&
+        step.advice.settings.at(0).option == Option::kModel &&
+        step.advice.settings.at(0).value == "bias-scale-6") {
+      return true;
+    }
+  }
+  return false;
+}
+
 // A Gaussian error beyond 4.5σ happens once in 150 000 draws: with 9
 // parameters × 3 presets a failure means a real defect, not bad luck.
 constexpr double kBoundSigmas = 4.5;
@@ -93,8 +105,12 @@ TEST(CalibrateRecording, CatchesAMps2LogReadAsG) {
   try {
     CalibrateRecording(s.recording, {});
     FAIL();
-  } catch (const Error& e) {
-    EXPECT_THAT(e.what(), HasSubstr("look like m/s2: use --units mps2"));
+  } catch (const UnitsError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("look like m/s2"));
+    EXPECT_EQ(e.finding().guess, UnitsGuess::kMps2);
+    ASSERT_EQ(e.advice().settings.size(), 1u);
+    EXPECT_EQ(e.advice().settings[0].option, Option::kLogUnits);
+    EXPECT_EQ(e.advice().settings[0].value, "mps2");
   }
 }
 
@@ -106,9 +122,10 @@ TEST(CalibrateRecording, RefusesTooFewPositionsAndSaysWhatToRecord) {
   try {
     CalibrateRecording(s.recording, {});
     FAIL();
-  } catch (const Error& e) {
-    EXPECT_THAT(e.what(), HasSubstr("--model bias-scale-6"));
-    EXPECT_THAT(e.what(), HasSubstr("mpcal detect"));
+  } catch (const SessionError& e) {
+    EXPECT_EQ(e.problem(), SessionProblem::kTooFewPositions);
+    EXPECT_TRUE(OffersSixParameterModel(e.coverage()));
+    EXPECT_EQ(e.advice().stage, Stage::kDetect);
   }
   // Exactly the six poses of ArduPilot and PX4: solved, with the warning
   // that nothing checks the fit.
@@ -178,8 +195,8 @@ TEST(RealRecordings, FerrarisSixPosesCalibrateWithTheSixParameterModelOnly) {
   try {
     CalibrateRecording(rec, CalibrateOptions{});
     FAIL() << "the 9-parameter model must be refused on six poses";
-  } catch (const Error& e) {
-    EXPECT_THAT(e.what(), HasSubstr("--model bias-scale-6"));
+  } catch (const SessionError& e) {
+    EXPECT_TRUE(OffersSixParameterModel(e.coverage()));
   }
   CalibrateOptions six;
   six.solve.model = ModelKind::kBiasScale6;
@@ -189,6 +206,52 @@ TEST(RealRecordings, FerrarisSixPosesCalibrateWithTheSixParameterModelOnly) {
   const double independent =
       IndependentUnweightedRms(r.positions, r.solve.estimate, 9.80665);
   EXPECT_LT(r.solve.residual_rms_after_mps2, 1.2 * independent);
+}
+
+}  // namespace
+}  // namespace mpcal
+
+namespace mpcal {
+namespace {
+
+// The turns detect reports: one between each pair of neighbouring
+// positions, each carrying the gravity direction measured before it onto
+// the one after to within the simulated gyroscope's errors (a few per cent of
+// scale: a degree or two on a 90 deg turn).
+TEST(MeasureTurns, CarriesGravityOverEachTurnAndFindsTheScaleOfCounts) {
+  SimulateStaticOptions options = Session("colibri", 11);
+  options.positions = 12;
+  options.dwell_s = 4.0;
+  options.initial_rest_s = 0.0;
+  options.gyro = true;
+  const SimulatedSession s = SimulateStatic(options);
+  const DetectResult det = DetectStatic(s.recording, {});
+  ASSERT_EQ(det.intervals.size(), 12u);
+  const std::vector<Turn> turns = MeasureTurns(s.recording, det.intervals);
+  ASSERT_EQ(turns.size(), 11u);
+  for (const Turn& t : turns) {
+    // The rotation is at least the tilt it causes, and the hand's turn about
+    // gravity adds a little more.
+    EXPECT_GE(t.angle_deg, t.tilt_deg - 3.0);
+    EXPECT_GT(t.tilt_deg, 20.0);
+    EXPECT_NEAR(t.axis.norm(), 1.0, 1e-9);
+    EXPECT_GT(t.duration_s(), 0.0);
+  }
+  // The same session in raw counts: the fitted scale is the simulator's
+  // (within the gyroscope's own scale errors) and the angles agree.
+  options.gyro_units = GyroUnits::kCounts;
+  const SimulatedSession c = SimulateStatic(options);
+  double scale = 0.0;
+  const std::vector<Turn> counted = MeasureTurns(c.recording, det.intervals, &scale);
+  ASSERT_EQ(counted.size(), turns.size());
+  EXPECT_NEAR(scale * options.gyro_counts_per_radps, 1.0, 0.08);
+  for (std::size_t k = 0; k < turns.size(); ++k) {
+    EXPECT_NEAR(counted[k].angle_deg, turns[k].angle_deg, 0.08 * turns[k].angle_deg);
+  }
+  // No gyroscope: no turns.
+  Recording accel_only = s.recording;
+  accel_only.gyro_radps.clear();
+  EXPECT_TRUE(MeasureTurns(accel_only, det.intervals).empty());
 }
 
 }  // namespace

@@ -1,0 +1,199 @@
+// The passes of static detection over every sample: checks, extremes and
+// reading step, the sample period, one g in the recording's units, and the
+// readings at the sensor's range limit.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "detect_steps.h"
+#include "motion_statistic.h"
+#include "mpcal/error.h"
+#include "mpcal/units.h"
+
+namespace mpcal::internal {
+
+double TypicalPeriod(const std::vector<double>& t) {
+  const std::size_t n = t.size();
+  const std::size_t stride = std::max<std::size_t>(1, (n - 1) / 100000);
+  std::vector<double> dt;
+  dt.reserve((n - 1) / stride + 1);
+  for (std::size_t i = 1; i < n; i += stride) dt.push_back(t[i] - t[i - 1]);
+  const double limit = 1.5 * Quantile(dt, 0.5);
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const double d : dt) {
+    if (d <= limit) {
+      sum += d;
+      ++count;
+    }
+  }
+  return sum / static_cast<double>(count);
+}
+
+SampleScan CheckAndScan(const Recording& recording, const std::string& src) {
+  const auto& t = recording.time_s;
+  const auto& a = recording.accel;
+  const std::size_t n = t.size();
+  // The message for the first bad sample in [b, e).
+  auto fail_in = [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      if (!std::isfinite(t[i]) || !a[i].allFinite()) {
+        throw Error(ErrorKind::kInput,
+                    fmt::format("{}: sample {} (t = {} s) is not finite", src, i, t[i]));
+      }
+      if (i > 0 && !(t[i] > t[i - 1])) {
+        throw Error(
+            ErrorKind::kTime,
+            fmt::format(
+                "{}: time does not increase at sample {} ({} s after {} s); the static "
+                "detector needs a strictly increasing time column",
+                src,
+                i,
+                t[i],
+                t[i - 1]));
+      }
+    }
+  };
+  constexpr double kMax = std::numeric_limits<double>::max();
+  constexpr std::size_t kBlock = 4096;  // checked without a branch per sample
+  // The extremes in locals, not in `scan`: stores the compiler could not
+  // keep in registers (a[i] might alias them) doubled this loop's time.
+  Eigen::Array3d highest = a[0];
+  Eigen::Array3d lowest = a[0];
+  double step = std::numeric_limits<double>::infinity();
+  const std::size_t stride = std::max<std::size_t>(1, n / 200000);
+  std::size_t next_step = stride;
+  for (std::size_t b = 0; b < n; b += kBlock) {
+    const std::size_t e = std::min(n, b + kBlock);
+    bool bad = false;
+    for (std::size_t i = b; i < e; ++i) {
+      // (|x| <= max is false for NaN and infinities.)
+      bad |= !(std::abs(t[i]) <= kMax) | !(std::abs(a[i][0]) <= kMax) |
+             !(std::abs(a[i][1]) <= kMax) | !(std::abs(a[i][2]) <= kMax);
+    }
+    for (std::size_t i = std::max<std::size_t>(b, 1); i < e; ++i)
+      bad |= !(t[i] > t[i - 1]);
+    if (bad) fail_in(b, e);
+    for (std::size_t i = b; i < e; ++i) {
+      highest = highest.max(a[i].array());
+      lowest = lowest.min(a[i].array());
+    }
+    for (; next_step < e; next_step += stride) {
+      for (int k = 0; k < 3; ++k) {
+        const double d = std::abs(a[next_step][k] - a[next_step - 1][k]);
+        if (d > 0.0 && d < step) step = d;
+      }
+    }
+  }
+  SampleScan scan;
+  scan.highest = highest;
+  scan.lowest = lowest;
+  scan.resolution_step = std::isfinite(step) ? step : 0.0;
+  return scan;
+}
+
+Eigen::Vector3d MeanOf(const std::vector<Eigen::Vector3d>& a,
+                       std::size_t b,
+                       std::size_t e) {
+  const Eigen::Vector3d ref = a[b];
+  Eigen::Vector3d s = Eigen::Vector3d::Zero();
+  for (std::size_t i = b; i < e; ++i) s += a[i] - ref;
+  return ref + s / static_cast<double>(e - b);
+}
+
+SphereFit GravityInUnits(const Recording& r,
+                         const std::vector<double>& stat,
+                         std::size_t w,
+                         double still_level) {
+  if (const auto fixed = FixedMps2PerUnit(r.units)) {
+    SphereFit nominal;
+    nominal.radius = kStandardGravityMps2 / *fixed;
+    return nominal;
+  }
+  const std::size_t blocks = r.size() / w;
+  std::vector<std::size_t> still;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    if (stat[b * w + w / 2] <= still_level) still.push_back(b);
+  }
+  if (still.size() < 4) {
+    still.resize(blocks);
+    for (std::size_t b = 0; b < blocks; ++b) still[b] = b;
+  }
+  const std::size_t stride = std::max<std::size_t>(1, still.size() / 2000);
+  std::vector<Eigen::Vector3d> means;
+  for (std::size_t k = 0; k < still.size(); k += stride) {
+    means.push_back(MeanOf(r.accel, still[k] * w, (still[k] + 1) * w));
+  }
+  return FitSphere(means, r.units);
+}
+
+Clipping MarkClipped(const std::vector<Eigen::Vector3d>& a,
+                     double range_mps2,
+                     const SphereFit& sphere,
+                     const SampleScan& scan) {
+  const std::size_t n = a.size();
+  Clipping out;
+  out.clipped.assign(n, 0);
+  if (!(sphere.radius > 0.0)) return out;
+  constexpr char kAxes[] = "xyz";
+  std::vector<std::string> limits;
+  for (int k = 0; k < 3; ++k) {
+    const double c = sphere.centre[k];
+    double hi_limit = std::numeric_limits<double>::infinity();
+    double lo_limit = -hi_limit;
+    if (range_mps2 > 0.0) {
+      // 99 %: a 16-bit ±2 g sensor tops out at 1.99994 g, and a scale
+      // estimated for counts is good to a fraction of a percent.
+      const double limit = 0.99 * range_mps2 / kStandardGravityMps2 * sphere.radius;
+      hi_limit = c + limit;
+      lo_limit = c - limit;
+    } else {
+      const double hi = scan.highest[k];
+      const double lo = scan.lowest[k];
+      // A level counts when the sensor sticks there: 3 identical samples.
+      auto sticks_at = [&](double level) {
+        std::size_t run = 0;
+        for (const auto& v : a) {
+          run = v[k] == level ? run + 1 : 0;
+          if (run >= 3) return true;
+        }
+        return false;
+      };
+      const double far = 1.5 * sphere.radius;
+      if (hi - c >= far && sticks_at(hi)) hi_limit = hi;
+      if (c - lo >= far && sticks_at(lo)) lo_limit = lo;
+    }
+    std::size_t count = 0;
+    // (The readings are finite: with no limit on this axis, none is at one.)
+    const bool limited = std::isfinite(hi_limit) || std::isfinite(lo_limit);
+    for (std::size_t i = 0; limited && i < n; ++i) {
+      if (a[i][k] >= hi_limit || a[i][k] <= lo_limit) {
+        out.clipped[i] = 1;
+        ++count;
+      }
+    }
+    if (count > 0 && range_mps2 > 0.0) {
+      limits.push_back(
+          c == 0.0 ? fmt::format("|{}| >= {:.6g}", kAxes[k], hi_limit)
+                   : fmt::format("|{} - {:.6g}| >= {:.6g}", kAxes[k], c, hi_limit - c));
+    } else if (count > 0) {
+      std::string side;
+      if (std::isfinite(hi_limit)) side = fmt::format("{} >= {:.6g}", kAxes[k], hi_limit);
+      if (std::isfinite(lo_limit)) {
+        side +=
+            fmt::format("{}{} <= {:.6g}", side.empty() ? "" : " or ", kAxes[k], lo_limit);
+      }
+      limits.push_back(side);
+    }
+  }
+  out.limits = fmt::format("{}", fmt::join(limits, ", "));
+  out.count =
+      static_cast<std::size_t>(std::count(out.clipped.begin(), out.clipped.end(), 1));
+  return out;
+}
+
+}  // namespace mpcal::internal
