@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "mpcal/calibration.h"
+#include "mpcal/distributions.h"  // ChiSquareUpperTail, the test of the verdict
 #include "mpcal/model.h"
 #include "mpcal/units.h"
 
@@ -114,11 +115,6 @@ RepeatabilityResult AnalyzeRepeatability(std::span<const Calibration> trials,
 /// As above with trials named "trial 1", "trial 2", ...
 RepeatabilityResult AnalyzeRepeatability(std::span<const Calibration> trials,
                                          const RepeatabilityOptions& options = {});
-
-/// Upper-tail probability of the chi-square distribution,
-/// P(χ²_dof ≥ chi2), for dof ≥ 1 (closed form for integer dof).
-/// \pre dof >= 1, chi2 >= 0.
-double ChiSquareUpperTail(double chi2, int dof);
 
 /// The JSON of the issue (`"format": "mpcal.repeatability/1"`), SI units,
 /// pretty-printed and newline-ended:

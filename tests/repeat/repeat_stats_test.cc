@@ -259,7 +259,15 @@ TEST(Repeatability, RefusesTrialsOfDifferentModels) {
                                                     HasSubstr("bias-scale-6"),
                                                     HasSubstr("trial 1 (a.json)"),
                                                     HasSubstr("shin-el-sheimy-9"),
-                                                    HasSubstr("--model"))));
+                                                    HasSubstr("share one model"))));
+  try {
+    AnalyzeRepeatability(trials, names);
+  } catch (const Error& e) {
+    // Calibrate every session with the same model: a fact, spelled by the command.
+    ASSERT_EQ(e.advice().settings.size(), 1u);
+    EXPECT_EQ(e.advice().settings[0].option, Option::kModel);
+    EXPECT_EQ(e.advice().stage, Stage::kCalibrate);
+  }
 }
 
 TEST(Repeatability, RefusesTrialsOfDifferentGravity) {
