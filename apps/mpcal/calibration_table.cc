@@ -42,11 +42,12 @@ std::string FormatSplitHalf(const SplitHalfSummary& check) {
     const char* kind = c.kind == SplitKind::kByTime ? "by time" : "alternate positions";
     if (!c.determined) {
       out += fmt::format(
-          "split-half ({}, {} + {} positions): not possible, a half needs 5 "
+          "split-half ({}, {} + {} positions): not possible, a half needs {} "
           "positions more than the parameters and must determine them all\n",
           kind,
           c.positions_first,
-          c.positions_second);
+          c.positions_second,
+          SplitRedundancyNeeded(c.kind));
       continue;
     }
     out += fmt::format(

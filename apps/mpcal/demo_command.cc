@@ -22,7 +22,7 @@
 #include "mpcal/report.h"
 #include "mpcal/simulate.h"
 #include "mpcal/simulate_walk.h"
-#include "mpcal/simulated_bound.h"
+#include "simulated_bound.h"
 #include "mpcal/verify.h"
 
 namespace mpcal::cli {

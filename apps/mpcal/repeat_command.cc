@@ -19,6 +19,7 @@
 #include "calibration_table.h"
 #include "cli_options.h"
 #include "command.h"
+#include "explain_repeat.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/calibration_file.h"
@@ -200,12 +201,18 @@ void Run(RepeatFlags& f) {
         trials.push_back(CalibrateSession(input.readable(), path, f));
       }
     } catch (const Error& e) {
-      throw Error(input.Restore(e.what()));
+      throw Error(e.kind(), input.Restore(e.what()), e.advice());
     }
   }
   fmt::print("\n");
 
-  const RepeatabilityResult result = AnalyzeRepeatability(trials, f.inputs, f.repeat);
+  const RepeatabilityResult result = [&] {
+    try {
+      return AnalyzeRepeatability(trials, f.inputs, f.repeat);
+    } catch (const Error& e) {
+      throw Error(e.kind(), ExplainRepeatRefusal(e));
+    }
+  }();
   fmt::print("{}\n{}", FormatRepeatabilityTable(result), RepeatabilityVerdict(result));
   for (const std::string& note : result.notes) fmt::print("note: {}\n", note);
   if (!f.json.empty()) {

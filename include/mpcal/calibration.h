@@ -65,6 +65,13 @@ inline std::string_view ToString(SplitKind kind) {
   return kind == SplitKind::kByTime ? "by_time" : "interleaved";
 }
 
+/// Positions beyond the parameters each half of a split needs: 5 by time (a
+/// half estimates its own scatter of the positions), 3 interleaved (the
+/// halves share the whole session's orientations and take its scatter).
+inline int SplitRedundancyNeeded(SplitKind kind) {
+  return kind == SplitKind::kByTime ? 5 : 3;
+}
+
 /// One split of the used positions into two halves, each calibrated alone,
 /// and how far the two estimates differ in units of their combined 1σ:
 /// z = (p₁ − p₂)/√(σ₁² + σ₂²), standard normal when the 1σ are honest
@@ -73,9 +80,9 @@ struct SplitHalfComparison {
   SplitKind kind = SplitKind::kByTime;
   int positions_first = 0;
   int positions_second = 0;
-  /// False when a half has fewer than 5 positions more than the parameters,
-  /// does not determine every parameter (or its fit
-  /// failed): then there is no z.
+  /// False when a half has fewer than SplitRedundancyNeeded(kind) positions
+  /// more than the parameters, does not determine every parameter (or its
+  /// fit failed): then there is no z.
   bool determined = false;
   /// Per estimated parameter, in the packed order of kParameterNames.
   std::vector<double> z;

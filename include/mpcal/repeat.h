@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "mpcal/calibration.h"
+#include "mpcal/distributions.h"  // ChiSquareUpperTail, the test of the verdict
 #include "mpcal/model.h"
 #include "mpcal/units.h"
 
@@ -113,10 +114,6 @@ RepeatabilityResult AnalyzeRepeatability(std::span<const Calibration> trials,
 RepeatabilityResult AnalyzeRepeatability(std::span<const Calibration> trials,
                                          const RepeatabilityOptions& options = {});
 
-/// Upper-tail probability of the chi-square distribution,
-/// P(χ²_dof ≥ chi2), for dof ≥ 1 (closed form for integer dof).
-/// \pre dof >= 1, chi2 >= 0.
-double ChiSquareUpperTail(double chi2, int dof);
 
 /// The paper's table in the paper's units: one column per trial, then mean,
 /// "std (n)" and "std (n-1)", the RMS of the trials' own 1σ ("1σ (rms)", "-"

@@ -48,8 +48,10 @@ struct SolveOptions {
   /// Leave-one-position-out cross-validation (K extra small fits).
   bool cross_validate = true;
   /// The split-half check (four extra fits): the used positions split by
-  /// time and alternately, each half calibrated alone, and every 1σ widened
-  /// when two halves disagree beyond chance at `split_half_significance`.
+  /// time and alternately (each pair of nearest orientations shared between
+  /// the halves, so that both span the sphere as the whole does), each half
+  /// calibrated alone, and every 1σ widened when two halves disagree beyond
+  /// chance at `split_half_significance`.
   bool split_half_check = true;
   double split_half_significance = 0.01;
   /// A bias drifting linearly over the session, b(t) = b + d·(t − t_ref),
@@ -64,6 +66,11 @@ struct SolveOptions {
   /// t_ref in the positions' clock (s): a drifting bias is reported as the
   /// bias at this time. Unset: the mean of the used positions' middles.
   std::optional<double> bias_reference_time_s;
+  /// The scatter of the positions beyond their noise (m/s², 1σ) when known
+  /// from more positions than these: used when these are too few to
+  /// estimate it (fewer than 5 redundant). The split-half check gives each
+  /// half the whole session's. Unset: estimated, or zero when too few.
+  std::optional<double> known_position_scatter_mps2;
   /// Offset of the readings before calibration (m/s²), for the "before"
   /// residuals only: zero for m/s² and g; for raw counts the ADC's zero
   /// found from the positions, so that "before" means nominal scale and
@@ -118,11 +125,20 @@ struct SolveResult {
   /// test was made (enough positions for 12 parameters).
   std::optional<BiasDrift> bias_drift;
   std::optional<double> bias_drift_p_value;
+  /// The time (s, the positions' clock) the estimated bias refers to: the
+  /// drift's reference time with a drifting bias; without, the same time
+  /// (options.bias_reference_time_s or the mean of the used positions'
+  /// middles), near which a constant-bias fit meets a slowly drifting bias.
+  double bias_reference_time_s = 0.0;
   /// χ² of the whitened residuals over degrees of freedom.
   double variance_factor = 0.0;
   double final_cost = 0.0;
   int iterations = 0;
   std::vector<std::string> warnings;
+  /// Parameters the positions determine only poorly (strongly correlated
+  /// with others; names of kParameterNames): more orientations, filling the
+  /// gaps of their coverage of the sphere (Stage::kDetect shows it), help.
+  std::vector<std::string> poorly_determined;
 
   bool converged() const { return status == SolveStatus::kConverged; }
   /// One line: status, iterations, RMS before/after.

@@ -137,6 +137,27 @@ std::string FormatRepeatabilityTable(const RepeatabilityResult& result) {
   return out;
 }
 
+namespace {
+
+// The kinds of parameter (scale, non-orthogonality) whose three were all
+// tested and held: only those are named (the 6-parameter model has no
+// angles; trials without σ give no verdict).
+std::vector<std::string> KindsThatHeld(const RepeatabilityResult& result) {
+  std::vector<std::string> held;
+  for (int kind = 1; kind < 3; ++kind) {
+    bool all_held = true;
+    for (int p = 3 * kind; p < 3 * kind + 3; ++p) {
+      const std::optional<bool>& verdict =
+          result.parameters[static_cast<std::size_t>(p)].changed;
+      if (!verdict || *verdict) all_held = false;
+    }
+    if (all_held) held.push_back(kind == 1 ? "scale" : "non-orthogonality");
+  }
+  return held;
+}
+
+}  // namespace
+
 std::string RepeatabilityVerdict(const RepeatabilityResult& result) {
   std::vector<int> changed, stable, unknown;
   bool any_no_sigma = false;
@@ -176,18 +197,7 @@ std::string RepeatabilityVerdict(const RepeatabilityResult& result) {
       bias[2].std_population / kStandardGravityMps2 * 1e3);
 
   if (only_bias_changed) {
-    // Name only the kinds that were tested and held (the 6-parameter model
-    // has no angles; trials without σ give no verdict).
-    std::vector<std::string> held;
-    for (int kind = 1; kind < 3; ++kind) {
-      bool all_held = true;
-      for (int p = 3 * kind; p < 3 * kind + 3; ++p) {
-        const std::optional<bool>& verdict =
-            result.parameters[static_cast<std::size_t>(p)].changed;
-        if (!verdict || *verdict) all_held = false;
-      }
-      if (all_held) held.push_back(kind == 1 ? "scale" : "non-orthogonality");
-    }
+    const std::vector<std::string> held = KindsThatHeld(result);
     out += held.empty()
                ? std::string("So: re-estimate the bias at every power-up.\n")
                : fmt::format(

@@ -45,8 +45,9 @@ std::string SplitHalfTable(const SplitHalfSummary& check, ModelKind model) {
       row.insert(row.end(),
                  {"\u2014",
                   "\u2014",
-                  "not possible: a half needs 5 positions more "
-                  "than the parameters"});
+                  fmt::format("not possible: a half needs {} positions more "
+                              "than the parameters",
+                              SplitRedundancyNeeded(c.kind))});
     }
     t.Row(row, c.determined && c.disagree ? "bad" : "");
   }

@@ -2,22 +2,71 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <Eigen/Cholesky>
 
+#include "mpcal/distributions.h"
 #include "mpcal/error.h"
-#include "mpcal/repeat.h"  // ChiSquareUpperTail
 
 namespace mpcal::internal {
 namespace {
 
 using Vector9 = Eigen::Matrix<double, kNumModelParameters, 1>;
 
-// Redundant positions each half needs for the check.
-constexpr int kMinSplitRedundancy = 5;
+// Redundant positions each half needs for the check
+// (SplitRedundancyNeeded). By time, a half has its own orientations and
+// estimates its own scatter (which needs 5 redundant positions; weights.h):
+// fewer would leave its 1σ resting on a barely determined fit. Interleaved,
+// the halves share the orientations of the whole and take its scatter
+// (SolveOptions::known_position_scatter_mps2), so they are two samples of one
+// design: 3, as for the drift's F test, is enough for the linearised 1σ
+// (tests/solve/split_half_test.cc measures the false alarms of 13 + 13).
+
+}  // namespace
+
+std::array<std::vector<std::size_t>, 2> InterleavedHalves(
+    std::span<const PositionObservation> positions) {
+  // Pairs of nearest orientations, in recording order: each position not yet
+  // paired takes the unpaired one whose mean points nearest its own, and
+  // the halves get one of each pair, the earlier alternately in the first
+  // and the second. A position left alone goes to the smaller half.
+  const std::size_t count = positions.size();
+  std::vector<bool> paired(count, false);
+  std::array<std::vector<std::size_t>, 2> halves;
+  std::size_t pairs = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    if (paired[k]) continue;
+    paired[k] = true;
+    const Eigen::Vector3d u = positions[k].mean_mps2.normalized();
+    std::optional<std::size_t> nearest;
+    double best = -2.0;
+    for (std::size_t j = k + 1; j < count; ++j) {
+      if (paired[j]) continue;
+      const double cosine = u.dot(positions[j].mean_mps2.normalized());
+      if (cosine > best) {
+        best = cosine;
+        nearest = j;
+      }
+    }
+    if (!nearest) {
+      halves[halves[0].size() <= halves[1].size() ? 0 : 1].push_back(k);
+      continue;
+    }
+    paired[*nearest] = true;
+    const std::size_t first = pairs % 2;
+    halves[first].push_back(k);
+    halves[1 - first].push_back(*nearest);
+    ++pairs;
+  }
+  for (auto& half : halves) std::sort(half.begin(), half.end());
+  return halves;
+}
+
+namespace {
 
 // The two halves of the used positions: the first ⌈K/2⌉ in recording order
-// and the rest, or every other one.
+// and the rest, or the interleaved halves of paired orientations.
 std::array<std::vector<PositionObservation>, 2> Halves(
     std::span<const PositionObservation> positions,
     const std::vector<bool>& used,
@@ -27,10 +76,16 @@ std::array<std::vector<PositionObservation>, 2> Halves(
     if (used[k]) in_use.push_back(positions[k]);
   }
   std::array<std::vector<PositionObservation>, 2> halves;
+  if (kind == SplitKind::kInterleaved) {
+    const auto index = InterleavedHalves(in_use);
+    for (int h = 0; h < 2; ++h) {
+      for (std::size_t k : index[h]) halves[h].push_back(in_use[k]);
+    }
+    return halves;
+  }
   const std::size_t first = (in_use.size() + 1) / 2;
   for (std::size_t k = 0; k < in_use.size(); ++k) {
-    const bool second = kind == SplitKind::kByTime ? k >= first : k % 2 == 1;
-    halves[second ? 1 : 0].push_back(in_use[k]);
+    halves[k >= first ? 1 : 0].push_back(in_use[k]);
   }
   return halves;
 }
@@ -61,7 +116,8 @@ SplitHalfComparison Compare(std::span<const PositionObservation> positions,
   // unknowns: its 1σ rests on the linearisation of a barely determined fit
   // and would make the halves look inconsistent when they are not.
   const int needed = ParameterCount(half_options.model) +
-                     (half_options.force_bias_drift ? 3 : 0) + kMinSplitRedundancy;
+                     (half_options.force_bias_drift ? 3 : 0) +
+                     SplitRedundancyNeeded(kind);
   if (std::min(c.positions_first, c.positions_second) < needed) return c;
   const auto first = FitHalf(halves[0], half_options);
   if (!first) return c;

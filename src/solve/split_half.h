@@ -6,6 +6,7 @@
 // the user's evidence on their own recording, with no truth needed.
 #pragma once
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -23,5 +24,13 @@ namespace mpcal::internal {
 SplitHalfSummary CheckSplitHalves(std::span<const PositionObservation> positions,
                                   const std::vector<bool>& used,
                                   const SolveOptions& options);
+
+/// The interleaved split: indices (into `positions`, ascending) of each
+/// half. Positions are paired by nearest orientation in recording order and
+/// each pair shared between the halves, so that both span the sphere as the
+/// whole does whatever the order the positions were held in (an up/down
+/// pair held in turn would otherwise put every "up" in one half).
+std::array<std::vector<std::size_t>, 2> InterleavedHalves(
+    std::span<const PositionObservation> positions);
 
 }  // namespace mpcal::internal

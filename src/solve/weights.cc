@@ -47,49 +47,6 @@ double ResidualSigma(const ErrorModel& model,
   return std::sqrt(variance);
 }
 
-namespace {
-
-// The continued fraction of the incomplete beta function (Lentz's method),
-// converging for x < (a + 1)/(a + b + 2).
-double BetaContinuedFraction(double a, double b, double x) {
-  constexpr double kTiny = 1e-300;
-  double c = 1.0;
-  double d = 1.0 - (a + b) * x / (a + 1.0);
-  d = 1.0 / (std::abs(d) < kTiny ? kTiny : d);
-  double h = d;
-  for (int m = 1; m <= 300; ++m) {
-    for (int half = 0; half < 2; ++half) {
-      const double numerator =
-          half == 0 ? m * (b - m) * x / ((a + 2.0 * m - 1.0) * (a + 2.0 * m))
-                    : -(a + m) * (a + b + m) * x / ((a + 2.0 * m) * (a + 2.0 * m + 1.0));
-      d = 1.0 + numerator * d;
-      d = 1.0 / (std::abs(d) < kTiny ? kTiny : d);
-      c = 1.0 + numerator / c;
-      if (std::abs(c) < kTiny) c = kTiny;
-      h *= d * c;
-      if (half == 1 && std::abs(d * c - 1.0) < 1e-15) return h;
-    }
-  }
-  return h;
-}
-
-// The regularised incomplete beta function I_x(a, b).
-double RegularisedBeta(double x, double a, double b) {
-  if (x <= 0.0) return 0.0;
-  if (x >= 1.0) return 1.0;
-  const double front = std::exp(std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) +
-                                a * std::log(x) + b * std::log1p(-x));
-  if (x < (a + 1.0) / (a + b + 2.0)) return front * BetaContinuedFraction(a, b, x) / a;
-  return 1.0 - front * BetaContinuedFraction(b, a, 1.0 - x) / b;
-}
-
-}  // namespace
-
-double FUpperTail(double f, int d1, int d2) {
-  if (!(f > 0.0)) return 1.0;
-  return RegularisedBeta(d2 / (d2 + d1 * f), 0.5 * d2, 0.5 * d1);
-}
-
 double ChiSquare1MedianQuantile(std::size_t count, double alpha) {
   // P(median > x) = P(fewer than rank + 1 of the count values are <= x)
   // = Σ_{i <= rank} C(count, i) F^i (1 − F)^(count − i), F the χ²₁ CDF.

@@ -56,10 +56,6 @@ double PositionScatterVariance(const std::vector<double>& residuals_mps2,
                                const std::vector<double>& sigmas_mps2,
                                const std::vector<double>& leverages);
 
-/// P(F ≥ f) for the F distribution with (d1, d2) degrees of freedom: the
-/// regularised incomplete beta I_x(d2/2, d1/2), x = d2/(d2 + d1 f).
-double FUpperTail(double f, int d1, int d2);
-
 /// Fewer redundant positions (K − p) than this never show a scatter: the
 /// median of so few residuals says too little.
 inline constexpr int kMinScatterRedundancy = 5;

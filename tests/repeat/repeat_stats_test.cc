@@ -259,7 +259,15 @@ TEST(Repeatability, RefusesTrialsOfDifferentModels) {
                                                     HasSubstr("bias-scale-6"),
                                                     HasSubstr("trial 1 (a.json)"),
                                                     HasSubstr("shin-el-sheimy-9"),
-                                                    HasSubstr("--model"))));
+                                                    HasSubstr("share one model"))));
+  try {
+    AnalyzeRepeatability(trials, names);
+  } catch (const Error& e) {
+    // Calibrate every session with the same model: a fact, spelled by the command.
+    ASSERT_EQ(e.advice().settings.size(), 1u);
+    EXPECT_EQ(e.advice().settings[0].option, Option::kModel);
+    EXPECT_EQ(e.advice().stage, Stage::kCalibrate);
+  }
 }
 
 TEST(Repeatability, RefusesTrialsOfDifferentGravity) {
@@ -269,7 +277,16 @@ TEST(Repeatability, RefusesTrialsOfDifferentGravity) {
               ::testing::ThrowsMessage<Error>(
                   AllOf(HasSubstr("trial 2 was calibrated against gravity 9.7803"),
                         HasSubstr("9.80665"),
-                        HasSubstr("--gravity"))));
+                        HasSubstr("do not compare"))));
+  try {
+    AnalyzeRepeatability(trials);
+  } catch (const Error& e) {
+    // The same gravity, or the site's latitude and height: facts the
+    // command spells as its flags.
+    ASSERT_FALSE(e.advice().settings.empty());
+    EXPECT_EQ(e.advice().settings[0].option, Option::kGravity);
+    EXPECT_EQ(e.advice().stage, Stage::kCalibrate);
+  }
   // Rounding in a file is not a different gravity.
   trials[1].gravity_mps2 = 9.80665 + 1e-12;
   EXPECT_NO_THROW(AnalyzeRepeatability(trials));
@@ -283,7 +300,14 @@ TEST(Repeatability, RefusesTrialsOfDifferentUnits) {
       [&] { AnalyzeRepeatability(trials); },
       ::testing::ThrowsMessage<Error>(AllOf(HasSubstr("trial 2 is for input units g"),
                                             HasSubstr("mps2"),
-                                            HasSubstr("--units"))));
+                                            HasSubstr("share the units"))));
+  try {
+    AnalyzeRepeatability(trials);
+  } catch (const Error& e) {
+    ASSERT_EQ(e.advice().settings.size(), 1u);
+    EXPECT_EQ(e.advice().settings[0].option, Option::kLogUnits);
+    EXPECT_EQ(e.advice().settings[0].value, "mps2");
+  }
 }
 
 TEST(Repeatability, RefusesNonFiniteValuesAndWrongNameCount) {

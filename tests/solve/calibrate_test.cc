@@ -11,7 +11,7 @@
 #include "mpcal/error.h"
 #include "mpcal/log_reader.h"
 #include "mpcal/simulate.h"
-#include "mpcal/simulated_bound.h"
+#include "simulated_bound.h"
 #include "test_util.h"
 
 namespace mpcal {

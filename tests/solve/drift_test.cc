@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "mpcal/cramer_rao.h"
+#include "mpcal/distributions.h"
 #include "mpcal/solve.h"
 #include "solve/weights.h"
 #include "synthetic_positions.h"
@@ -50,9 +51,9 @@ testing::SyntheticSession DriftingSession(const Eigen::Vector3d& drift_mps2_per_
 
 TEST(FUpperTail, MatchesTabulatedQuantiles) {
   // F(3, 10) exceeds 6.552 with probability 1 %, F(3, 20) 3.098 with 5 %.
-  EXPECT_NEAR(internal::FUpperTail(6.552, 3, 10), 0.01, 2e-4);
-  EXPECT_NEAR(internal::FUpperTail(3.098, 3, 20), 0.05, 5e-4);
-  EXPECT_EQ(internal::FUpperTail(0.0, 3, 20), 1.0);
+  EXPECT_NEAR(FUpperTail(6.552, 3, 10), 0.01, 2e-4);
+  EXPECT_NEAR(FUpperTail(3.098, 3, 20), 0.05, 5e-4);
+  EXPECT_EQ(FUpperTail(0.0, 3, 20), 1.0);
 }
 
 TEST(Solve, FindsABiasDriftAndReportsTheBiasAtTheMiddleOfTheSession) {

@@ -153,7 +153,10 @@ TEST(Solve, RefusesTooFewPositionsAndSuggestsTheSixParameterModel) {
     FAIL() << "expected an Error";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("8 static positions are too few"));
-    EXPECT_THAT(e.what(), HasSubstr("--model bias-scale-6"));
+    // The six-parameter model as a fact: the words are the command's.
+    ASSERT_EQ(e.advice().settings.size(), 1u);
+    EXPECT_EQ(e.advice().settings[0].option, Option::kModel);
+    EXPECT_EQ(e.advice().settings[0].value, "bias-scale-6");
   }
 }
 

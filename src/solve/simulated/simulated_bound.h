@@ -1,6 +1,10 @@
 /// \file simulated_bound.h
 /// \brief The Cramér-Rao bound of a simulated session: the yardstick the
 /// demo, the tests and the accuracy benchmark hold every estimate against.
+///
+/// Not a public header: it ties the simulator to the solver, which a user of
+/// the library never needs. Link the non-installed interface library
+/// `mpcal_simulated_bound` (src/solve/CMakeLists.txt) to include it.
 #pragma once
 
 #include <cmath>
