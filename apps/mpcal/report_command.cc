@@ -72,6 +72,7 @@ void Run(const ReportFlags& f) {
   // A counts log read as m/s² would plot ±20,000 "m/s²": calibrate's check.
   if (inputs.session) CheckUnits(inputs.session->recording, kStandardGravityMps2);
   inputs.command_line = CommandLine(f);
+  inputs.explain_advice = ExplainAdvice;
   WriteReport(f.output, inputs);
   if (f.output == "-") return;
   std::vector<std::string> sections;

@@ -17,7 +17,9 @@ namespace {
 constexpr double kQuietQuantile = 0.10;
 
 void ThrowIfInvalid(const std::string& problem, std::string_view what) {
-  if (!problem.empty()) throw Error(fmt::format("{}: {}", what, problem));
+  if (!problem.empty()) {
+    throw Error(ErrorKind::kOption, fmt::format("{}: {}", what, problem));
+  }
 }
 
 // Centred moving standard deviation (norm over the three axes) with the
@@ -111,14 +113,18 @@ StillResult DetectStill(std::span<const double> time_s,
   const std::size_t n = time_s.size();
   if (specific_force_mps2.size() != n ||
       (!gyro_radps.empty() && gyro_radps.size() != n)) {
-    throw Error("still test: time, accelerometer and gyroscope have different lengths");
+    throw Error(ErrorKind::kInput,
+                "still test: time, accelerometer and gyroscope have different lengths");
   }
-  if (n < 3) throw Error(fmt::format("still test: {} samples are too few", n));
+  if (n < 3)
+    throw Error(ErrorKind::kInput, fmt::format("still test: {} samples are too few", n));
   const double span_s = time_s.back() - time_s.front();
   const double dt = span_s / static_cast<double>(n - 1);
-  if (!(dt > 0.0)) throw Error("still test: the sample times do not increase");
+  if (!(dt > 0.0))
+    throw Error(ErrorKind::kInput, "still test: the sample times do not increase");
   if (span_s < options.window_s) {
     throw Error(
+        ErrorKind::kInput,
         fmt::format("still test: the log ({:.2f} s) is shorter than one window ({} s)",
                     span_s,
                     options.window_s));
@@ -191,9 +197,10 @@ IntegrationResult IntegrateTrajectory(
   if (specific_force_mps2.size() != n || still.still.size() != n ||
       (!gyro_radps.empty() && gyro_radps.size() != n)) {
     throw Error(
+        ErrorKind::kInput,
         "integration: time, readings, gyroscope and still flags differ in length");
   }
-  if (n < 2) throw Error("integration: fewer than two samples");
+  if (n < 2) throw Error(ErrorKind::kInput, "integration: fewer than two samples");
 
   IntegrationResult result;
   result.gyro_used = options.use_gyro && !gyro_radps.empty();
@@ -201,15 +208,16 @@ IntegrationResult IntegrateTrajectory(
   const double rest_s = rest_end > 0 ? time_s[rest_end - 1] - time_s[0] : 0.0;
   const bool needs_rest = options.mount == MountMode::kLevel || result.gyro_used;
   if (needs_rest && (rest_end == 0 || rest_s < options.min_initial_rest_s)) {
-    throw Error(fmt::format(
-        "the log starts with {:.2f} s at rest, but {} needs at least {} s still at the "
-        "start; "
-        "record a rest before walking{}",
-        rest_s,
-        options.mount == MountMode::kLevel ? "levelling" : "the gyroscope bias",
-        options.min_initial_rest_s,
-        options.mount == MountMode::kLevel ? ", or state the mount with --mount z-up"
-                                           : ""));
+    Advice advice;
+    if (options.mount == MountMode::kLevel) advice.settings = {{Option::kMount, "z-up"}};
+    throw Error(ErrorKind::kSession,
+                fmt::format("the log starts with {:.2f} s at rest, but {} needs at least "
+                            "{} s still at the start; record a rest before walking",
+                            rest_s,
+                            options.mount == MountMode::kLevel ? "levelling"
+                                                               : "the gyroscope bias",
+                            options.min_initial_rest_s),
+                advice);
   }
   if (rest_end > 0) {
     Eigen::Vector3d f_mean = Eigen::Vector3d::Zero();
