@@ -165,7 +165,10 @@ void AppendCorrectedRow(const LogLine& line,
                  : line.gyro_span[static_cast<std::size_t>(i - 3)];
   };
   std::array<int, 6> order = {0, 1, 2, 3, 4, 5};
-  std::sort(order.begin(), order.begin() + count, [&](int i, int j) {
+  // The numbers replaced first, in the order they lie on the line; the
+  // others after them (a fixed size keeps the sort in bounds).
+  std::sort(order.begin(), order.end(), [&](int i, int j) {
+    if ((i < count) != (j < count)) return i < count;
     return span(i).first < span(j).first;
   });
   std::size_t copied = 0;

@@ -72,6 +72,27 @@ double Quantile(std::vector<double> values, double q) {
 
 Eigen::Vector3d Horizontal(const Eigen::Vector3d& v) { return {v.x(), v.y(), 0.0}; }
 
+// Levelling and the gyroscope's bias need the log to start at rest for
+// options.min_initial_rest_s; z-up needs no levelling (the advice).
+void CheckInitialRest(std::span<const double> time_s,
+                      std::size_t rest_end,
+                      bool gyro_used,
+                      const IntegrateOptions& options) {
+  const double rest_s = rest_end > 0 ? time_s[rest_end - 1] - time_s[0] : 0.0;
+  const bool needs_rest = options.mount == MountMode::kLevel || gyro_used;
+  if (!needs_rest || (rest_end > 0 && rest_s >= options.min_initial_rest_s)) return;
+  Advice advice;
+  if (options.mount == MountMode::kLevel) advice.settings = {{Option::kMount, "z-up"}};
+  throw Error(
+      ErrorKind::kSession,
+      fmt::format("the log starts with {:.2f} s at rest, but {} needs at least "
+                  "{} s still at the start; record a rest before walking",
+                  rest_s,
+                  options.mount == MountMode::kLevel ? "levelling" : "the gyroscope bias",
+                  options.min_initial_rest_s),
+      advice);
+}
+
 }  // namespace
 
 std::string_view ToString(MountMode mode) {
@@ -205,20 +226,7 @@ IntegrationResult IntegrateTrajectory(
   IntegrationResult result;
   result.gyro_used = options.use_gyro && !gyro_radps.empty();
   const std::size_t rest_end = still.initial_rest_end;
-  const double rest_s = rest_end > 0 ? time_s[rest_end - 1] - time_s[0] : 0.0;
-  const bool needs_rest = options.mount == MountMode::kLevel || result.gyro_used;
-  if (needs_rest && (rest_end == 0 || rest_s < options.min_initial_rest_s)) {
-    Advice advice;
-    if (options.mount == MountMode::kLevel) advice.settings = {{Option::kMount, "z-up"}};
-    throw Error(ErrorKind::kSession,
-                fmt::format("the log starts with {:.2f} s at rest, but {} needs at least "
-                            "{} s still at the start; record a rest before walking",
-                            rest_s,
-                            options.mount == MountMode::kLevel ? "levelling"
-                                                               : "the gyroscope bias",
-                            options.min_initial_rest_s),
-                advice);
-  }
+  CheckInitialRest(time_s, rest_end, result.gyro_used, options);
   if (rest_end > 0) {
     Eigen::Vector3d f_mean = Eigen::Vector3d::Zero();
     Eigen::Vector3d w_mean = Eigen::Vector3d::Zero();
