@@ -1,6 +1,5 @@
 // Still test, strapdown integration, alignment and metrics.
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -277,7 +276,15 @@ IntegrationResult IntegrateTrajectory(
 }
 
 Eigen::Vector3d TimedPath::At(double t) const {
-  assert(!time_s.empty());
+  // Release builds drop asserts: an empty path would read past its end.
+  if (time_s.empty() || position_m.size() != time_s.size()) {
+    throw Error(ErrorKind::kInput,
+                fmt::format("a path of {} times and {} positions has no position at "
+                            "{} s",
+                            time_s.size(),
+                            position_m.size(),
+                            t));
+  }
   if (t <= time_s.front()) return position_m.front();
   if (t >= time_s.back()) return position_m.back();
   const auto it = std::upper_bound(time_s.begin(), time_s.end(), t);
@@ -306,6 +313,11 @@ double AlignToReference(TimedPath& path,
 }
 
 double HorizontalPathLength(std::span<const Eigen::Vector3d> positions_m, double step_m) {
+  // A NaN step would count no step at all: a length of (almost) zero.
+  if (!(step_m >= 0.0) || !std::isfinite(step_m)) {
+    throw Error(ErrorKind::kOption,
+                fmt::format("the path length's step must be >= 0 m (got {})", step_m));
+  }
   if (positions_m.empty()) return 0.0;
   double length = 0.0;
   Eigen::Vector3d last = Horizontal(positions_m.front());
