@@ -11,6 +11,8 @@
 #include "calibration_table.h"
 #include "cli_options.h"
 #include "command.h"
+#include "explain.h"
+#include "explain_apply.h"
 #include "mpcal/apply.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibration_file.h"
@@ -29,22 +31,21 @@ struct ApplyFlags {
   std::optional<GyroUnits> out_gyro_units;
 };
 
-void RunApply(CLI::App& cmd, ApplyFlags& flags) {
-  if (flags.calibration == "-" && flags.input == "-") {
-    throw Error("the calibration file and the log cannot both be standard input ('-')");
-  }
-  // The log is refused as the output inside ApplyCalibration; the
-  // calibration file is only known here.
-  CheckOutput(flags.output, {flags.calibration});
-  const Calibration calibration = ReadCalibrationFile(flags.calibration);
+// The options from the flags; what the user left out comes from the
+// calibration: a log from the calibrated sensor is in the calibration's units
+// and read as the log it was made from (columns, time unit, rate), so that no
+// flags need repeating for logs of the same logger.
+ApplyOptions OptionsFor(const CLI::App& cmd,
+                        const ApplyFlags& flags,
+                        const Calibration& calibration) {
   ApplyOptions options = flags.options;
-  // A log from the calibrated sensor is in the calibration's units unless
-  // the user says otherwise.
-  if (cmd.count("--units") == 0) options.log.units = calibration.input_units;
-  // And read as the log it was made from (columns, time unit, rate), unless
-  // the user says otherwise: no flags to repeat for logs of the same logger.
-  if (calibration.input_layout && cmd.count("--columns") == 0 &&
-      cmd.count("--time-unit") == 0 && cmd.count("--rate") == 0) {
+  if (cmd.count(std::string(FlagName(Option::kLogUnits))) == 0) {
+    options.log.units = calibration.input_units;
+  }
+  if (calibration.input_layout &&
+      cmd.count(std::string(FlagName(Option::kLogColumns))) == 0 &&
+      cmd.count(std::string(FlagName(Option::kLogTimeUnit))) == 0 &&
+      cmd.count(std::string(FlagName(Option::kLogRate))) == 0) {
     const Calibration::InputLayout& layout = *calibration.input_layout;
     options.log.columns = layout.columns;
     if (const auto unit = ParseTimeUnit(layout.time_unit)) options.log.time_unit = *unit;
@@ -53,51 +54,75 @@ void RunApply(CLI::App& cmd, ApplyFlags& flags) {
   options.out_units = flags.out_units;
   options.out_gyro_units = flags.out_gyro_units;
   // Likewise the gyroscope columns: in the calibration's units unless told.
-  if (calibration.gyroscope && cmd.count("--gyro-units") == 0) {
+  if (calibration.gyroscope &&
+      cmd.count(std::string(FlagName(Option::kLogGyroUnits))) == 0) {
     options.log.gyro_in_counts = calibration.gyroscope->input_units == GyroUnits::kCounts;
     options.log.gyro_in_dps = calibration.gyroscope->input_units == GyroUnits::kDps;
   }
+  return options;
+}
+
+// ApplyCalibration, and once more without the recorded layout when the
+// recorded columns do not fit the log (a log of another logger: read it as
+// any log, by the header's names or t,ax,ay,az).
+ApplyResult ApplyWithFallback(const CLI::App& cmd,
+                              const ApplyFlags& flags,
+                              const Calibration& calibration,
+                              const ApplyOptions& options) {
+  try {
+    return ApplyCalibration(calibration, flags.input, flags.output, options);
+  } catch (const Error& e) {
+    if (!calibration.input_layout || options.log.columns.empty() ||
+        e.kind() != ErrorKind::kColumns ||
+        cmd.count(std::string(FlagName(Option::kLogColumns))) > 0) {
+      throw;
+    }
+  }
+  ApplyOptions plain = options;
+  plain.log.columns = flags.options.log.columns;
+  plain.log.time_unit = flags.options.log.time_unit;
+  plain.log.rate_hz = flags.options.log.rate_hz;
+  return ApplyCalibration(calibration, flags.input, flags.output, plain);
+}
+
+void PrintSummary(const ApplyFlags& flags,
+                  const Calibration& calibration,
+                  const ApplyResult& result) {
+  fmt::print("corrected {} rows of '{}' into '{}' (accelerometer in {}",
+             result.data_rows,
+             flags.input,
+             flags.output,
+             ToString(result.out_units));
+  if (result.gyro_corrected) {
+    fmt::print(", gyroscope in {}",
+               result.out_gyro_units == GyroUnits::kDps ? "deg/s" : "rad/s");
+  }
+  if (result.rest_magnitude_mps2) {
+    fmt::print("; |a| at rest {:.5f} m/s², gravity {:.5f} m/s²",
+               *result.rest_magnitude_mps2,
+               calibration.gravity_mps2);
+  }
+  fmt::print(")\n");
+}
+
+void RunApply(const CLI::App& cmd, const ApplyFlags& flags) {
+  if (flags.calibration == "-" && flags.input == "-") {
+    throw Error("the calibration file and the log cannot both be standard input ('-')");
+  }
+  // The log is refused as the output inside ApplyCalibration; the
+  // calibration file is only known here.
+  CheckOutput(flags.output, {flags.calibration});
+  const Calibration calibration = ReadCalibrationFile(flags.calibration);
+  ApplyOptions options = OptionsFor(cmd, flags, calibration);
   TerminalProgress progress("applying " + flags.calibration + " to " + flags.input);
   options.log.progress = progress.Callback();
-  const ApplyResult result = [&] {
-    try {
-      return ApplyCalibration(calibration, flags.input, flags.output, options);
-    } catch (const Error& e) {
-      // A log of another logger: the recorded columns do not fit it; read it
-      // as any log (the header's names, or t,ax,ay,az).
-      if (!calibration.input_layout || options.log.columns.empty() ||
-          std::string_view(e.what()).rfind("--columns", 0) != 0 ||
-          cmd.count("--columns") > 0) {
-        throw;
-      }
-      ApplyOptions plain = options;
-      plain.log.columns = flags.options.log.columns;
-      plain.log.time_unit = flags.options.log.time_unit;
-      plain.log.rate_hz = flags.options.log.rate_hz;
-      return ApplyCalibration(calibration, flags.input, flags.output, plain);
-    }
-  }();
+  const ApplyResult result = ApplyWithFallback(cmd, flags, calibration, options);
   progress.Done();
   PrintWarnings(result.warnings);
+  if (result.rest_mismatch) PrintWarnings({ExplainRestMismatch(*result.rest_mismatch)});
   // Standard output may be the corrected log itself: the summary goes there
   // only when the log went to a file.
-  if (flags.output != "-") {
-    fmt::print("corrected {} rows of '{}' into '{}' (accelerometer in {}",
-               result.data_rows,
-               flags.input,
-               flags.output,
-               ToString(result.out_units));
-    if (result.gyro_corrected) {
-      fmt::print(", gyroscope in {}",
-                 result.out_gyro_units == GyroUnits::kDps ? "deg/s" : "rad/s");
-    }
-    if (result.rest_magnitude_mps2) {
-      fmt::print("; |a| at rest {:.5f} m/s², gravity {:.5f} m/s²",
-                 *result.rest_magnitude_mps2,
-                 calibration.gravity_mps2);
-    }
-    fmt::print(")\n");
-  }
+  if (flags.output != "-") PrintSummary(flags, calibration, result);
 }
 
 }  // namespace

@@ -121,36 +121,10 @@ void AddGravityOptions(CLI::App& app, GravityFlags& flags) {
   g->excludes(lat);
 }
 
-void AddCalibrateOptions(CLI::App& app, CalibrateOptions& options) {
-  const std::vector<std::pair<std::string, ModelKind>> models{
-      {"shin-el-sheimy-9", ModelKind::kShinElSheimy9},
-      {"bias-scale-6", ModelKind::kBiasScale6}};
-  const std::vector<std::pair<std::string, RobustLoss>> losses{
-      {"none", RobustLoss::kNone},
-      {"huber", RobustLoss::kHuber},
-      {"cauchy", RobustLoss::kCauchy}};
-  app.add_option(
-         "--counts-per-g",
-         options.counts_per_g,
-         "With --units counts: the datasheet's sensitivity (e.g. 16384 for an "
-         "MPU-6050 at +-2 g), so that scale-factor errors and biases are relative to "
-         "the datasheet, not to the fitted sphere; the calibration file records "
-         "which (input.scale_reference)")
-      ->check(PositiveNumber)
-      ->group("Estimation");
-  app.add_option(std::string(FlagName(Option::kModel)),
-                 options.solve.model,
-                 "Error model: shin-el-sheimy-9 (bias, scale, 3 non-orthogonality "
-                 "angles; >= 10 positions) or bias-scale-6 (six-position protocol)")
-      ->transform(OneOf(models))
-      ->default_str("shin-el-sheimy-9")
-      ->group("Estimation");
-  app.add_option(std::string(FlagName(Option::kRobust)),
-                 options.solve.robust,
-                 "Robust loss on the position residuals: none, huber or cauchy")
-      ->transform(OneOf(losses))
-      ->default_str("none")
-      ->group("Estimation");
+namespace {
+
+// The still test's flags (DetectOptions).
+void AddDetectOptions(CLI::App& app, CalibrateOptions& options) {
   app.add_option(std::string(FlagName(Option::kDetectWindow)),
                  options.detect.window_s,
                  "Static detection: moving window of the motion statistic (s)")
@@ -204,6 +178,41 @@ void AddCalibrateOptions(CLI::App& app, CalibrateOptions& options) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 180.0))
       ->group("Static detection");
+}
+
+}  // namespace
+
+void AddCalibrateOptions(CLI::App& app, CalibrateOptions& options) {
+  const std::vector<std::pair<std::string, ModelKind>> models{
+      {"shin-el-sheimy-9", ModelKind::kShinElSheimy9},
+      {"bias-scale-6", ModelKind::kBiasScale6}};
+  const std::vector<std::pair<std::string, RobustLoss>> losses{
+      {"none", RobustLoss::kNone},
+      {"huber", RobustLoss::kHuber},
+      {"cauchy", RobustLoss::kCauchy}};
+  app.add_option(
+         "--counts-per-g",
+         options.counts_per_g,
+         "With --units counts: the datasheet's sensitivity (e.g. 16384 for an "
+         "MPU-6050 at +-2 g), so that scale-factor errors and biases are relative to "
+         "the datasheet, not to the fitted sphere; the calibration file records "
+         "which (input.scale_reference)")
+      ->check(PositiveNumber)
+      ->group("Estimation");
+  app.add_option(std::string(FlagName(Option::kModel)),
+                 options.solve.model,
+                 "Error model: shin-el-sheimy-9 (bias, scale, 3 non-orthogonality "
+                 "angles; >= 10 positions) or bias-scale-6 (six-position protocol)")
+      ->transform(OneOf(models))
+      ->default_str("shin-el-sheimy-9")
+      ->group("Estimation");
+  app.add_option(std::string(FlagName(Option::kRobust)),
+                 options.solve.robust,
+                 "Robust loss on the position residuals: none, huber or cauchy")
+      ->transform(OneOf(losses))
+      ->default_str("none")
+      ->group("Estimation");
+  AddDetectOptions(app, options);
 }
 
 void ThrowIfInvalid(const std::string& problem, const std::string& what) {

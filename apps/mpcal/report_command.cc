@@ -72,6 +72,15 @@ void Run(const ReportFlags& f) {
   // A counts log read as m/s² would plot ±20,000 "m/s²": calibrate's check.
   if (inputs.session) CheckUnits(inputs.session->recording, kStandardGravityMps2);
   inputs.command_line = CommandLine(f);
+  // Advice in the page as the command to run: "mpcal report --verify-trajectories
+  // PREFIX".
+  inputs.explain_advice = [](const Advice& advice) {
+    if (advice.stage == Stage::kNone) return ExplainAdvice(advice);
+    std::string command = fmt::format("mpcal {}", SubcommandName(advice.stage));
+    for (const Setting& setting : advice.settings)
+      command += " " + FlagWithValue(setting);
+    return command;
+  };
   WriteReport(f.output, inputs);
   if (f.output == "-") return;
   std::vector<std::string> sections;

@@ -139,7 +139,8 @@ void WriteSession(const SimulatedSession& session,
   }
 }
 
-void Run(const SimulateStaticFlags& f) {
+// The outputs named sensibly, and writable, before anything is simulated.
+void CheckOutputs(const SimulateStaticFlags& f) {
   if (f.output.empty()) throw Error("simulate static: give the output log with -o FILE");
   if (!f.truth.empty() && f.truth == f.output) {
     throw Error(
@@ -155,61 +156,68 @@ void Run(const SimulateStaticFlags& f) {
   }
   CheckWritable(f.output);
   if (!f.truth.empty()) CheckWritable(f.truth);
-  // With the log on stdout the summary must not mix into it.
-  std::FILE* summary = to_stdout ? stderr : stdout;
-  const SimulateStaticOptions options = ToOptions(f);
-  const double gravity = f.gravity.Resolve();
+}
+
+// One session: its files and the summary.
+void RunOne(const SimulateStaticFlags& f,
+            const SimulateStaticOptions& options,
+            double gravity,
+            std::FILE* summary) {
+  const bool to_stdout = f.output == "-";
   const std::string_view units = ToString(options.units);
-
-  if (!f.trials) {
-    const SimulatedSession s = SimulateStatic(options, gravity);
-    WriteSession(s, f.output, f.truth, f.digits);
-    const double duration = s.recording.size() / s.rate_hz;
-    fmt::print(
-        summary,
-        "Simulated a hand-held {} session (seed {}): {} rows over {:.1f} s at {:g} Hz, "
-        "{} position{} held {:g} s each with {:g} s hand turns after {:g} s of rest; "
-        "readings in {}{}, white noise σ = {:.4g} m/s² per sample ({:g} m/s²/√Hz){}, "
-        "gravity {:.5f} m/s². Wrote {}{}.\n",
-        options.device.name,
-        f.seed,
-        s.recording.size(),
-        duration,
-        s.rate_hz,
-        s.directions.size(),
-        s.directions.size() == 1 ? "" : "s",
-        options.dwell_s,
-        options.turn_s,
-        options.initial_rest_s,
-        units,
-        options.gyro
-            ? (options.gyro_units == GyroUnits::kCounts ? " with gyroscope (counts)"
-                                                        : " with gyroscope (rad/s)")
-            : "",
-        s.noise_std_mps2.x(),
-        options.device.noise_density_mps2_per_sqrt_hz,
-        s.quantisation_step_mps2 > 0
-            ? fmt::format(", quantised to {:.4g} m/s²", s.quantisation_step_mps2)
-            : std::string(),
-        gravity,
-        to_stdout ? "the log to standard output" : f.output,
-        f.truth.empty() ? " (no --truth: the true errors were not written)"
-                        : fmt::format(" and the true errors to {}", f.truth));
-    if (!to_stdout) {
-      fmt::print(summary,
-                 "Calibrate it with: mpcal calibrate {} --units {}{}{} -o calib.json\n",
-                 f.output,
-                 units,
-                 f.gravity.gravity_mps2 || f.gravity.latitude_deg
-                     ? fmt::format(" --gravity {:.5f}", gravity)
-                     : std::string(),
-                 options.gyro && options.gyro_units == GyroUnits::kCounts
-                     ? " --gyro-units counts"
-                     : "");
-    }
-    return;
+  const SimulatedSession s = SimulateStatic(options, gravity);
+  WriteSession(s, f.output, f.truth, f.digits);
+  const double duration = s.recording.size() / s.rate_hz;
+  fmt::print(
+      summary,
+      "Simulated a hand-held {} session (seed {}): {} rows over {:.1f} s at {:g} Hz, "
+      "{} position{} held {:g} s each with {:g} s hand turns after {:g} s of rest; "
+      "readings in {}{}, white noise σ = {:.4g} m/s² per sample ({:g} m/s²/√Hz){}, "
+      "gravity {:.5f} m/s². Wrote {}{}.\n",
+      options.device.name,
+      f.seed,
+      s.recording.size(),
+      duration,
+      s.rate_hz,
+      s.directions.size(),
+      s.directions.size() == 1 ? "" : "s",
+      options.dwell_s,
+      options.turn_s,
+      options.initial_rest_s,
+      units,
+      options.gyro
+          ? (options.gyro_units == GyroUnits::kCounts ? " with gyroscope (counts)"
+                                                      : " with gyroscope (rad/s)")
+          : "",
+      s.noise_std_mps2.x(),
+      options.device.noise_density_mps2_per_sqrt_hz,
+      s.quantisation_step_mps2 > 0
+          ? fmt::format(", quantised to {:.4g} m/s²", s.quantisation_step_mps2)
+          : std::string(),
+      gravity,
+      to_stdout ? "the log to standard output" : f.output,
+      f.truth.empty() ? " (no --truth: the true errors were not written)"
+                      : fmt::format(" and the true errors to {}", f.truth));
+  if (!to_stdout) {
+    fmt::print(summary,
+               "Calibrate it with: mpcal calibrate {} --units {}{}{} -o calib.json\n",
+               f.output,
+               units,
+               f.gravity.gravity_mps2 || f.gravity.latitude_deg
+                   ? fmt::format(" --gravity {:.5f}", gravity)
+                   : std::string(),
+               options.gyro && options.gyro_units == GyroUnits::kCounts
+                   ? " --gyro-units counts"
+                   : "");
   }
+}
 
+// N power-ups of the device: numbered files, a line per trial.
+void RunTrials(const SimulateStaticFlags& f,
+               const SimulateStaticOptions& options,
+               double gravity,
+               std::FILE* summary) {
+  const std::string_view units = ToString(options.units);
   const int n = *f.trials;
   const std::vector<SimulateStaticOptions> trials = TrialOptions(options, n);
   const Eigen::Vector3d spread_mg =
@@ -261,12 +269,20 @@ void Run(const SimulateStaticFlags& f) {
                                            NumberedPath(f.truth, n)));
 }
 
-void AddSimulateStaticCommand(CLI::App& simulate) {
-  auto f = std::make_shared<SimulateStaticFlags>();
-  CLI::App* app = simulate.add_subcommand(
-      "static",
-      "A hand-held multi-position session with known errors: rest, then each position "
-      "held still, with hand turns (rotation and shake) between them");
+void Run(const SimulateStaticFlags& f) {
+  CheckOutputs(f);
+  // With the log on stdout the summary must not mix into it.
+  std::FILE* summary = f.output == "-" ? stderr : stdout;
+  const SimulateStaticOptions options = ToOptions(f);
+  const double gravity = f.gravity.Resolve();
+  if (f.trials) {
+    RunTrials(f, options, gravity, summary);
+  } else {
+    RunOne(f, options, gravity, summary);
+  }
+}
+
+void AddOutputOptions(CLI::App* app, SimulateStaticFlags* f) {
   const std::string presets = fmt::format("{}", fmt::join(PresetNames(), ", "));
   app->add_option("--preset", f->preset, "Device (the paper's, METHOD.md §6): " + presets)
       ->capture_default_str();
@@ -283,6 +299,9 @@ void AddSimulateStaticCommand(CLI::App& simulate) {
                   "Write the true errors as a calibration file (JSON); with --trials, "
                   "TRUTH_1.json ... TRUTH_N.json")
       ->check(OutputPath);
+}
+
+void AddSessionOptions(CLI::App* app, SimulateStaticFlags* f) {
   app->add_option(
          "--positions",
          f->positions,
@@ -339,6 +358,9 @@ void AddSimulateStaticCommand(CLI::App& simulate) {
          "x,y,z, reaching the device's bias at the last sample (a warm-up)")
       ->delimiter(',')
       ->group("Session");
+}
+
+void AddAccelerometerOptions(CLI::App* app, SimulateStaticFlags* f) {
   app->add_option(std::string(FlagName(Option::kLogRate)),
                   f->rate_hz,
                   "Sample rate (Hz); default the device's")
@@ -366,6 +388,9 @@ void AddSimulateStaticCommand(CLI::App& simulate) {
   app->add_option("--counts-offset", f->counts_offset, "ADC zero, with --units counts")
       ->capture_default_str()
       ->group("Sensor");
+}
+
+void AddGyroscopeOptions(CLI::App* app, SimulateStaticFlags* f) {
   app->add_flag(
          "--gyro",
          f->gyro,
@@ -396,6 +421,18 @@ void AddSimulateStaticCommand(CLI::App& simulate) {
                   "Add the Earth's rotation at this latitude (deg) to the gyroscope")
       ->check(CLI::Range(-90.0, 90.0))
       ->group("Sensor");
+}
+
+void AddSimulateStaticCommand(CLI::App& simulate) {
+  auto f = std::make_shared<SimulateStaticFlags>();
+  CLI::App* app = simulate.add_subcommand(
+      "static",
+      "A hand-held multi-position session with known errors: rest, then each position "
+      "held still, with hand turns (rotation and shake) between them");
+  AddOutputOptions(app, f.get());
+  AddSessionOptions(app, f.get());
+  AddAccelerometerOptions(app, f.get());
+  AddGyroscopeOptions(app, f.get());
   app->add_option("--digits",
                   f->digits,
                   "Significant digits of the readings in the log (0: exact round trip)")

@@ -38,7 +38,8 @@ struct SimulateWalkFlags {
   std::optional<double> noise_density;
 };
 
-void RunSimulateWalk(const SimulateWalkFlags& f) {
+// No two outputs the same file, each writable, before anything is simulated.
+void CheckOutputs(const SimulateWalkFlags& f) {
   const std::vector<std::pair<const char*, std::string>> outputs = {
       {"--output", f.output},
       {"--gnss", f.gnss},
@@ -55,19 +56,20 @@ void RunSimulateWalk(const SimulateWalkFlags& f) {
       }
     }
   }
+}
+
+SimulateWalkOptions OptionsFor(const SimulateWalkFlags& f) {
   SimulateWalkOptions o = f.options;
   o.device = FindPreset(f.preset);
   o.seed = f.seed;
   if (f.noise_density) o.device.noise_density_mps2_per_sqrt_hz = *f.noise_density;
   o.gnss_noise_vertical_m = 2.0 * o.gnss_noise_horizontal_m;
-  // Gravity: as given; else normal gravity where the walk starts.
-  const double gravity =
-      f.gravity.gravity_mps2 || f.gravity.latitude_deg
-          ? f.gravity.Resolve()
-          : NormalGravityMps2(o.origin.latitude_deg, o.origin.height_m);
-  const SimulatedWalk walk = SimulateWalk(o, gravity);
-  // Several files: when one cannot be written, take back those already
-  // written, so that no partial output is left.
+  return o;
+}
+
+// Several files: when one cannot be written, take back those already
+// written, so that no partial output is left.
+void WriteOutputs(const SimulateWalkFlags& f, const SimulatedWalk& walk) {
   std::vector<std::string> written;
   try {
     WriteRecordingFile(f.output, walk.recording);
@@ -99,7 +101,12 @@ void RunSimulateWalk(const SimulateWalkFlags& f) {
     }
     throw;
   }
-  if (f.output == "-") return;
+}
+
+void PrintSummary(const SimulateWalkFlags& f,
+                  const SimulateWalkOptions& o,
+                  const SimulatedWalk& walk,
+                  double gravity) {
   const Recording& r = walk.recording;
   fmt::print(
       "{} walk of {:.1f} m around a {:.0f} m x {:.0f} m loop in {:.1f} s ({} samples at "
@@ -125,34 +132,22 @@ void RunSimulateWalk(const SimulateWalkFlags& f) {
              f.path.empty() ? "" : fmt::format(", {} (true path)", f.path));
 }
 
-}  // namespace
+void RunSimulateWalk(const SimulateWalkFlags& f) {
+  CheckOutputs(f);
+  const SimulateWalkOptions o = OptionsFor(f);
+  // Gravity: as given; else normal gravity where the walk starts.
+  const double gravity =
+      f.gravity.gravity_mps2 || f.gravity.latitude_deg
+          ? f.gravity.Resolve()
+          : NormalGravityMps2(o.origin.latitude_deg, o.origin.height_m);
+  const SimulatedWalk walk = SimulateWalk(o, gravity);
+  WriteOutputs(f, walk);
+  if (f.output == "-") return;
+  PrintSummary(f, o, walk, gravity);
+}
 
-void AddSimulateWalkCommand(CLI::App& simulate) {
-  auto f = std::make_shared<SimulateWalkFlags>();
-  CLI::App* app = simulate.add_subcommand(
-      "walk",
-      "A field-verification walk with known errors: a closed, roughly rectangular loop "
-      "with "
-      "a sensor on a pole, its IMU log and a GNSS reference (RTKLIB .pos)");
-  app->add_option("--preset",
-                  f->preset,
-                  fmt::format("Device (the paper's, METHOD.md §6): {}",
-                              fmt::join(PresetNames(), ", ")))
-      ->capture_default_str();
-  app->add_option("--seed", f->seed, "Random seed; the same seed gives the same walk")
-      ->capture_default_str();
-  app->add_option(
-         "-o,--output", f->output, "The IMU log (CSV: t,ax,ay,az[,gx,gy,gz]), m/s2")
-      ->check(OutputPath)
-      ->required();
-  app->add_option("--gnss", f->gnss, "The GNSS reference (RTKLIB .pos, GPST)")
-      ->check(OutputPath)
-      ->required();
-  app->add_option("--truth", f->truth, "The true errors as a calibration file (JSON)")
-      ->check(OutputPath);
-  app->add_option(
-      "--path", f->path, "The true path (CSV t_s,e_m,n_m,u_m at the IMU samples)");
-  auto& o = f->options;
+// The walk: its shape, pace and the sensor's mount.
+void AddWalkOptions(CLI::App* app, SimulateWalkOptions& o) {
   app->add_flag("--turn",
                 o.turn,
                 "The walker turns the sensor 90 deg at each corner (gyroscope columns "
@@ -186,6 +181,12 @@ void AddSimulateWalkCommand(CLI::App& simulate) {
                   "Tilt of the sensor's z axis from the vertical (deg)")
       ->capture_default_str()
       ->group("Walk");
+}
+
+// The IMU's rate and noise, and the GNSS reference's rate, noise and origin.
+void AddSensorAndReferenceOptions(CLI::App* app, SimulateWalkFlags& flags) {
+  SimulateWalkOptions& o = flags.options;
+  SimulateWalkFlags* f = &flags;
   app->add_option(std::string(FlagName(Option::kLogRate)),
                   o.rate_hz,
                   "IMU rate (Hz); default the device's")
@@ -217,6 +218,37 @@ void AddSimulateWalkCommand(CLI::App& simulate) {
   app->add_option("--origin-lon", o.origin.longitude_deg, "Longitude of the start (deg)")
       ->capture_default_str()
       ->group("Reference");
+}
+
+}  // namespace
+
+void AddSimulateWalkCommand(CLI::App& simulate) {
+  auto f = std::make_shared<SimulateWalkFlags>();
+  CLI::App* app = simulate.add_subcommand(
+      "walk",
+      "A field-verification walk with known errors: a closed, roughly rectangular loop "
+      "with "
+      "a sensor on a pole, its IMU log and a GNSS reference (RTKLIB .pos)");
+  app->add_option("--preset",
+                  f->preset,
+                  fmt::format("Device (the paper's, METHOD.md §6): {}",
+                              fmt::join(PresetNames(), ", ")))
+      ->capture_default_str();
+  app->add_option("--seed", f->seed, "Random seed; the same seed gives the same walk")
+      ->capture_default_str();
+  app->add_option(
+         "-o,--output", f->output, "The IMU log (CSV: t,ax,ay,az[,gx,gy,gz]), m/s2")
+      ->check(OutputPath)
+      ->required();
+  app->add_option("--gnss", f->gnss, "The GNSS reference (RTKLIB .pos, GPST)")
+      ->check(OutputPath)
+      ->required();
+  app->add_option("--truth", f->truth, "The true errors as a calibration file (JSON)")
+      ->check(OutputPath);
+  app->add_option(
+      "--path", f->path, "The true path (CSV t_s,e_m,n_m,u_m at the IMU samples)");
+  AddWalkOptions(app, f->options);
+  AddSensorAndReferenceOptions(app, *f);
   AddGravityOptions(*app, f->gravity);
   app->footer(
       "Gravity defaults to the WGS84 normal gravity at the start of the loop.\n"

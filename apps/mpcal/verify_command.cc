@@ -16,6 +16,7 @@
 #include "command.h"
 #include "explain_detect.h"
 #include "explain.h"
+#include "explain_verify.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/calibration_file.h"
@@ -71,31 +72,38 @@ std::string TrajectoryPath(const std::string& prefix, const std::string& role) {
   return prefix + "-" + role + ".csv";
 }
 
-void RunVerify(CLI::App& cmd, VerifyFlags& f) {
-  std::vector<std::string> outputs = {f.output};
-  if (!f.trajectory_prefix.empty()) {
-    for (const char* role : {"reference", "raw", "corrected"}) {
-      outputs.push_back(TrajectoryPath(f.trajectory_prefix, role));
-    }
-  }
-  for (const std::string& out : outputs) CheckOutput(out, {f.imu, f.gnss, f.calibration});
+struct VerifyInputs {
   std::optional<Calibration> calibration;
+  Recording imu;
+  GnssTrack reference;
+};
+
+VerifyInputs ReadInputs(const CLI::App& cmd, VerifyFlags& f) {
+  VerifyInputs in;
   if (!f.calibration.empty()) {
-    calibration = ReadCalibrationFile(f.calibration);
+    in.calibration = ReadCalibrationFile(f.calibration);
     // A log of the calibrated sensor is in the calibration's units unless
     // the user says otherwise.
-    if (cmd.count("--units") == 0) f.log.units = calibration->input_units;
+    if (cmd.count(std::string(FlagName(Option::kLogUnits))) == 0) {
+      f.log.units = in.calibration->input_units;
+    }
   }
   ThrowIfInvalid(f.log.Validate(), "log options");
   TerminalProgress progress("reading " + f.imu);
   f.log.progress = progress.Callback();
-  const Recording imu = ReadLog(f.imu, f.log);
+  in.imu = ReadLog(f.imu, f.log);
   progress.Done();
-  const GnssTrack reference = ReadGnss(f.gnss, f.gnss_options);
+  in.reference = ReadGnss(f.gnss, f.gnss_options);
+  return in;
+}
 
+VerifyOptions OptionsFor(const CLI::App& cmd,
+                         const VerifyFlags& f,
+                         const GnssTrack& reference) {
   VerifyOptions options = f.options;
   if (f.time_offset_s) {
-    if (cmd.count("--time-align") > 0 && options.time_align != TimeAlignMode::kOffset) {
+    if (cmd.count(std::string(FlagName(Option::kTimeAlign))) > 0 &&
+        options.time_align != TimeAlignMode::kOffset) {
       throw Error("--time-offset goes with --time-align offset (or no --time-align)");
     }
     options.time_align = TimeAlignMode::kOffset;
@@ -112,12 +120,11 @@ void RunVerify(CLI::App& cmd, VerifyFlags& f) {
   } else {
     options.integrate.gravity_mps2 = f.gravity.Resolve();
   }
+  return options;
+}
 
-  // A walk in g read as m/s² integrates to a tenth of the distance: the
-  // same units check as calibrate's (|a| stays near g while walking too).
-  WithDetectWords([&] { CheckUnits(imu, options.integrate.gravity_mps2); });
-  const VerifyResult result = Verify(imu, reference, calibration, options);
-  // The paths first, so that the result can name them for `mpcal report`.
+// The paths first, so that the result can name them for `mpcal report`.
+void WriteOutputs(const VerifyFlags& f, const VerifyResult& result) {
   std::vector<std::pair<std::string, std::string>> trajectories;
   if (!f.trajectory_prefix.empty()) {
     auto write = [&](const std::string& role, const std::string& csv) {
@@ -130,21 +137,21 @@ void RunVerify(CLI::App& cmd, VerifyFlags& f) {
     if (result.corrected_path) write("corrected", PathToCsv(*result.corrected_path));
   }
   WriteFileAtomically(f.output, VerificationToJson(result, trajectories));
+}
 
-  PrintWarnings(imu.warnings);
-  PrintWarnings(reference.warnings);
-  PrintWarnings(result.warnings);
-  // The result may be on standard output: then the summary goes to stderr.
-  std::FILE* out = f.output == "-" ? stderr : stdout;
+void PrintSummary(std::FILE* out,
+                  const VerifyFlags& f,
+                  const VerifyInputs& in,
+                  const VerifyResult& result) {
   fmt::print(out,
              "IMU {} ({} samples{}) vs reference {} ({} epochs, {}); clocks: {}, offset "
              "{:.3f} s, {:.1f} s in common\n",
              f.imu,
-             imu.size(),
-             imu.gyro_radps.empty() ? "" : ", with gyroscope",
+             in.imu.size(),
+             in.imu.gyro_radps.empty() ? "" : ", with gyroscope",
              f.gnss,
              result.reference.epochs,
-             ToString(reference.time_system),
+             ToString(in.reference.time_system),
              ToString(result.time.method),
              result.time.offset_s,
              result.time.overlap_end_s - result.time.overlap_start_s);
@@ -179,15 +186,33 @@ void RunVerify(CLI::App& cmd, VerifyFlags& f) {
       out, "wrote {}\n", f.output == "-" ? "the result to standard output" : f.output);
 }
 
-}  // namespace
+void RunVerify(const CLI::App& cmd, VerifyFlags& f) {
+  std::vector<std::string> outputs = {f.output};
+  if (!f.trajectory_prefix.empty()) {
+    for (const char* role : {"reference", "raw", "corrected"}) {
+      outputs.push_back(TrajectoryPath(f.trajectory_prefix, role));
+    }
+  }
+  for (const std::string& out : outputs) CheckOutput(out, {f.imu, f.gnss, f.calibration});
+  const VerifyInputs in = ReadInputs(cmd, f);
+  const VerifyOptions options = OptionsFor(cmd, f, in.reference);
+  // A walk in g read as m/s² integrates to a tenth of the distance: the
+  // same units check as calibrate's (|a| stays near g while walking too).
+  WithDetectWords([&] { CheckUnits(in.imu, options.integrate.gravity_mps2); });
+  VerifyResult result = Verify(in.imu, in.reference, in.calibration, options);
+  // The findings in this command's words, for the result file and the terminal.
+  for (std::size_t i = 0; i < result.findings.size(); ++i) {
+    result.warnings[i] = ExplainVerifyFinding(result.findings[i]);
+  }
+  WriteOutputs(f, result);
+  PrintWarnings(in.imu.warnings);
+  PrintWarnings(in.reference.warnings);
+  PrintWarnings(result.warnings);
+  // The result may be on standard output: then the summary goes to stderr.
+  PrintSummary(f.output == "-" ? stderr : stdout, f, in, result);
+}
 
-void AddVerifyCommand(CLI::App& root) {
-  auto f = std::make_shared<VerifyFlags>();
-  CLI::App* cmd =
-      root.add_subcommand("verify",
-                          "Field verification (the paper's section 5.2): integrate a "
-                          "walk around a closed loop "
-                          "raw and corrected, and compare both with a GNSS reference");
+void AddInputOutputOptions(CLI::App* cmd, VerifyFlags* f) {
   cmd->add_option("--imu", f->imu, "The walk's IMU log (as for calibrate; '-': stdin)")
       ->required();
   cmd->add_option("--gnss",
@@ -207,6 +232,9 @@ void AddVerifyCommand(CLI::App& root) {
          "Also write PREFIX-reference.csv, PREFIX-raw.csv and PREFIX-corrected.csv "
          "(t_s,e_m,n_m,u_m on the reference's clock and frame) for plotting")
       ->check(OutputPath);
+}
+
+void AddIntegrationOptions(CLI::App* cmd, VerifyFlags* f) {
   const std::vector<std::pair<std::string, MountMode>> mounts{
       {"level", MountMode::kLevel}, {"z-up", MountMode::kZUp}};
   cmd->add_option(
@@ -241,6 +269,9 @@ void AddVerifyCommand(CLI::App& root) {
       ->capture_default_str()
       ->check(PositiveNumber)
       ->group("Integration");
+}
+
+void AddTimeOptions(CLI::App* cmd, VerifyFlags* f) {
   const std::vector<std::pair<std::string, TimeAlignMode>> aligns{
       {"auto", TimeAlignMode::kAuto},
       {"common", TimeAlignMode::kCommonClock},
@@ -258,6 +289,9 @@ void AddVerifyCommand(CLI::App& root) {
                   f->time_offset_s,
                   "t_reference = t_imu + SECONDS (e.g. 18 for a UTC log against GPST)")
       ->group("Time");
+}
+
+void AddReferenceOptions(CLI::App* cmd, VerifyFlags* f) {
   const std::vector<std::pair<std::string, GnssFormat>> formats{
       {"auto", GnssFormat::kAuto},
       {"pos", GnssFormat::kRtklibPos},
@@ -277,6 +311,21 @@ void AddVerifyCommand(CLI::App& root) {
       ->capture_default_str()
       ->check(CLI::Range(0, 6))
       ->group("Reference");
+}
+
+}  // namespace
+
+void AddVerifyCommand(CLI::App& root) {
+  auto f = std::make_shared<VerifyFlags>();
+  CLI::App* cmd =
+      root.add_subcommand("verify",
+                          "Field verification (the paper's section 5.2): integrate a "
+                          "walk around a closed loop "
+                          "raw and corrected, and compare both with a GNSS reference");
+  AddInputOutputOptions(cmd, f.get());
+  AddIntegrationOptions(cmd, f.get());
+  AddTimeOptions(cmd, f.get());
+  AddReferenceOptions(cmd, f.get());
   AddLogOptions(*cmd, f->log);
   AddGravityOptions(*cmd, f->gravity);
   cmd->footer(

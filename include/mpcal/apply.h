@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 
+#include "mpcal/advice.h"
 #include "mpcal/calibration.h"
 #include "mpcal/log_reader.h"
 #include "mpcal/units.h"
@@ -97,6 +98,28 @@ struct ApplyOptions {
   std::string Validate() const;
 };
 
+/// What the magnitude at rest says when it is far from the calibration's
+/// gravity (ApplyOptions::rest_tolerance).
+enum class RestMismatchKind {
+  /// Neither a g/m/s² mix-up: another sensor, or the wrong units.
+  kSensorOrUnits,
+  /// The raw readings at rest are about 1 read as m/s²: the log is in g.
+  kLooksLikeG,
+  /// The raw readings at rest are about 9.8 read as g: the log is in m/s².
+  kLooksLikeMps2,
+};
+
+/// The finding of the magnitude-at-rest check: its kind, the figures, a
+/// plain sentence (no flags), and the units to read the log in as advice
+/// (LogOptions::units; an empty value when the data do not say which).
+struct RestMismatch {
+  RestMismatchKind kind = RestMismatchKind::kSensorOrUnits;
+  double magnitude_mps2 = 0.0;
+  double gravity_mps2 = 0.0;
+  std::string what;
+  Advice advice;
+};
+
 struct ApplyResult {
   std::size_t data_rows = 0;
   /// Comment, header and blank lines copied.
@@ -109,8 +132,10 @@ struct ApplyResult {
   /// start (up to about 260,000 rows); empty when the log has no rows.
   std::optional<double> rest_magnitude_mps2;
   /// For the user, one line each: the reader's (truncated last line, time
-  /// unit) and the magnitude-at-rest check.
+  /// unit).
   std::vector<std::string> warnings;
+  /// The magnitude-at-rest check, when the magnitude is far from gravity.
+  std::optional<RestMismatch> rest_mismatch;
 };
 
 /// Corrects the log `input` ("-": standard input) into `output` ("-":

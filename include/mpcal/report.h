@@ -10,10 +10,12 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "mpcal/advice.h"
 #include "mpcal/calibration.h"
 #include "mpcal/detect.h"
 #include "mpcal/log_reader.h"
@@ -54,6 +56,11 @@ struct ReportInputs {
   std::string generated_at;
   /// Page title.
   std::string title = "mpcal calibration report";
+  /// How the page words advice (what would show more: e.g. the trajectories
+  /// of a verification, Option::kVerifyTrajectories), in the caller's terms:
+  /// the `mpcal` command names its flags. Empty: the page states the facts
+  /// only.
+  std::function<std::string(const Advice&)> explain_advice;
 };
 
 /// The whole HTML page. Never fetches anything: no external references.

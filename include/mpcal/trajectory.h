@@ -115,6 +115,8 @@ struct TimedPath {
   std::size_t size() const { return time_s.size(); }
   bool empty() const { return time_s.empty(); }
   /// Position at `t` by linear interpolation; clamped at the ends.
+  /// \throws mpcal::Error (kInput) for an empty path, or times and positions
+  ///   of different lengths.
   Eigen::Vector3d At(double t) const;
 };
 
@@ -170,6 +172,7 @@ struct PathMetrics {
 /// Horizontal length (m) of the polyline through the points of `path` that
 /// are at least `step_m` apart (so that centimetre jitter at rest does not
 /// add up): the jitter-robust length of a GNSS or integrated track.
+/// \throws mpcal::Error (kOption) for a negative or non-finite step.
 double HorizontalPathLength(std::span<const Eigen::Vector3d> positions_m, double step_m);
 
 /// Metrics of `path` sampled at the reference epochs `reference`.

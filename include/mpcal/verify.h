@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "mpcal/advice.h"
 #include "mpcal/calibration.h"
 #include "mpcal/gnss.h"
 #include "mpcal/recording.h"
@@ -78,6 +79,28 @@ struct ReferenceMetrics {
   std::size_t epochs = 0;
 };
 
+/// What a verification found that the user should know.
+enum class VerifyFindingKind {
+  /// On the common clock the start of motion differs between the log and
+  /// the reference by more than 2 s (`motion_offset_s`): the clocks may
+  /// differ. Advice: align by the start of motion, or give the offset.
+  kClockDisagreement,
+  /// No stop between the rests at the ends: no zero-velocity updates.
+  kNoStop,
+  /// The log has gyroscope columns, but the options left them out.
+  kGyroscopeUnused,
+};
+
+/// One finding: its kind, the figures, a plain sentence (no flags) and what
+/// would change it, as facts (the caller words the advice).
+struct VerifyFinding {
+  VerifyFindingKind kind = VerifyFindingKind::kNoStop;
+  std::string what;
+  /// kClockDisagreement: the offset the start of motion suggests (s).
+  double motion_offset_s = 0.0;
+  Advice advice;
+};
+
 struct VerifyResult {
   TimeAlignment time;
   ReferenceMetrics reference;
@@ -100,6 +123,10 @@ struct VerifyResult {
   int stops = 0;
   double heading_rotation_rad = 0.0;
   /// Things the user should know (clock disagreement, no stop detected, ...).
+  std::vector<VerifyFinding> findings;
+  /// The findings as the result file and the report state them: `what` of
+  /// each finding, in order, unless the caller words them its own way (the
+  /// `mpcal` command puts its advice in).
   std::vector<std::string> warnings;
 };
 

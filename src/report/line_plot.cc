@@ -1,8 +1,10 @@
 #include "report/line_plot.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace mpcal::report {
 
@@ -63,12 +65,8 @@ LinePlotSpec ToLogScales(const LinePlotSpec& in) {
   return s;
 }
 
-}  // namespace
-
-std::string LinePlot(const LinePlotSpec& original) {
-  const LinePlotSpec log_spec =
-      original.log_x || original.log_y ? ToLogScales(original) : LinePlotSpec{};
-  const LinePlotSpec& spec = original.log_x || original.log_y ? log_spec : original;
+// The legend: named series, annotations, then the spec's extra entries.
+std::vector<LegendEntry> LegendOf(const LinePlotSpec& spec) {
   std::vector<LegendEntry> legend;
   for (const Series& s : spec.series) {
     if (s.name.empty()) continue;
@@ -80,17 +78,12 @@ std::string LinePlot(const LinePlotSpec& original) {
     legend.push_back({a.label, a.style, false, "", false});
   }
   legend.insert(legend.end(), spec.extra_legend.begin(), spec.extra_legend.end());
-  const double plot_width = spec.width - kMargins.left - kMargins.right;
-  const double legend_height = LegendHeight(legend, plot_width);
+  return legend;
+}
 
-  PlotArea area{kMargins.left,
-                kMargins.top,
-                plot_width,
-                spec.height - kMargins.top - kMargins.bottom};
-  Svg svg(spec.width,
-          spec.height + (legend_height > 0 ? legend_height + kMargins.legend_gap : 0),
-          spec.aria_label);
-
+// The ranges of everything drawn: series, annotations, fills, the reference
+// line and the range the y axis must include.
+std::pair<Interval, Interval> DataRanges(const LinePlotSpec& spec) {
   std::vector<double> xs;
   std::vector<double> ys;
   for (const Series& s : spec.series) {
@@ -111,47 +104,64 @@ std::string LinePlot(const LinePlotSpec& original) {
     ys.push_back(spec.y_include->lo);
     ys.push_back(spec.y_include->hi);
   }
-  Interval xr = DataRange(xs);
-  Interval yr = DataRange(ys);
+  return {DataRange(xs), DataRange(ys)};
+}
 
+struct AxesLayout {
+  Interval xr;
+  Interval yr;
   Ticks xt;
   Ticks yt;
-  if (spec.equal_scale) {
-    xr = Pad(xr, 0.05);
-    yr = Pad(yr, 0.05);
-    const double per_px =
-        std::max((xr.hi - xr.lo) / area.width, (yr.hi - yr.lo) / area.height);
-    const double xc = (xr.lo + xr.hi) / 2;
-    const double yc = (yr.lo + yr.hi) / 2;
-    xr = {xc - per_px * area.width / 2, xc + per_px * area.width / 2};
-    yr = {yc - per_px * area.height / 2, yc + per_px * area.height / 2};
-    // One step for both axes, so the grid is made of squares.
-    const double step = std::max(NiceTicks(xr, 8).step, NiceTicks(yr, 6).step);
-    xt = TicksInside(xr, step);
-    yt = TicksInside(yr, step);
-  } else {
-    // The x axis (time, mostly) ends where the data ends, not at the next
-    // round number: ticks inside the data's range.
-    xt = TicksInside(xr, NiceTicks(xr, 8).step);
-    // Padding must not push a range that stops at zero across it (distances).
-    Interval padded = Pad(yr, 0.03);
-    if (yr.lo >= 0 && padded.lo < 0) padded.lo = 0;
-    if (yr.hi <= 0 && padded.hi > 0) padded.hi = 0;
-    yt = NiceTicks(padded, 5);
-    if (spec.log_x) {
-      xt = DecadeTicks(xr);
-      xr = xt.range;
-    }
-    if (spec.log_y) yt = DecadeTicks(yr);
-    yr = yt.range;
-  }
-  const LinearScale x{xr.lo, xr.hi, area.left, area.right()};
-  const LinearScale y{yr.lo, yr.hi, area.bottom(), area.top};
+};
 
-  // Band labels: each centred on its band, on the first of two rows where it
-  // clears the label before it (narrow bands side by side alternate rows),
-  // so that no label is left out or drawn over another.
-  double row_end[2] = {-1e300, -1e300};
+// Equal scales: one length per unit on both axes, and one tick step, so that
+// the grid is made of squares.
+AxesLayout EqualScaleAxes(Interval xr, Interval yr, const PlotArea& area) {
+  AxesLayout out;
+  xr = Pad(xr, 0.05);
+  yr = Pad(yr, 0.05);
+  const double per_px =
+      std::max((xr.hi - xr.lo) / area.width, (yr.hi - yr.lo) / area.height);
+  const double xc = (xr.lo + xr.hi) / 2;
+  const double yc = (yr.lo + yr.hi) / 2;
+  out.xr = {xc - per_px * area.width / 2, xc + per_px * area.width / 2};
+  out.yr = {yc - per_px * area.height / 2, yc + per_px * area.height / 2};
+  const double step = std::max(NiceTicks(out.xr, 8).step, NiceTicks(out.yr, 6).step);
+  out.xt = TicksInside(out.xr, step);
+  out.yt = TicksInside(out.yr, step);
+  return out;
+}
+
+AxesLayout ChooseAxes(const LinePlotSpec& spec, const PlotArea& area) {
+  const auto [xr, yr] = DataRanges(spec);
+  if (spec.equal_scale) return EqualScaleAxes(xr, yr, area);
+  AxesLayout out;
+  out.xr = xr;
+  // The x axis (time, mostly) ends where the data ends, not at the next
+  // round number: ticks inside the data's range.
+  out.xt = TicksInside(xr, NiceTicks(xr, 8).step);
+  // Padding must not push a range that stops at zero across it (distances).
+  Interval padded = Pad(yr, 0.03);
+  if (yr.lo >= 0 && padded.lo < 0) padded.lo = 0;
+  if (yr.hi <= 0 && padded.hi > 0) padded.hi = 0;
+  out.yt = NiceTicks(padded, 5);
+  if (spec.log_x) {
+    out.xt = DecadeTicks(xr);
+    out.xr = out.xt.range;
+  }
+  if (spec.log_y) out.yt = DecadeTicks(yr);
+  out.yr = out.yt.range;
+  return out;
+}
+
+// Band labels: each centred on its band, on the first of two rows where it
+// clears the label before it (narrow bands side by side alternate rows), so
+// that no label is left out or drawn over another.
+void DrawBands(Svg& svg,
+               const LinePlotSpec& spec,
+               const PlotArea& area,
+               const LinearScale& x) {
+  std::array<double, 2> row_end = {-1e300, -1e300};
   for (const Band& b : spec.bands) {
     const double x0 = std::clamp(x(b.x0), area.left, area.right());
     const double x1 = std::clamp(x(b.x1), area.left, area.right());
@@ -160,13 +170,26 @@ std::string LinePlot(const LinePlotSpec& original) {
     if (b.label.empty()) continue;
     const double half = 3.2 * static_cast<double>(b.label.size()) + 1;
     const double centre = (x0 + x1) / 2;
-    for (int row = 0; row < 2; ++row) {
+    for (std::size_t row = 0; row < 2; ++row) {
       if (centre - half < row_end[row]) continue;
-      svg.Text(centre, area.top + 11 + 11 * row, b.label, "band-label", "middle");
+      svg.Text(centre,
+               area.top + 11 + 11 * static_cast<double>(row),
+               b.label,
+               "band-label",
+               "middle");
       row_end[row] = centre + half;
       break;
     }
   }
+}
+
+// Each fill as one polygon: along its upper edge, back along its lower one,
+// clipped to the y range.
+void DrawFills(Svg& svg,
+               const LinePlotSpec& spec,
+               const LinearScale& x,
+               const LinearScale& y,
+               const Interval& yr) {
   for (const FillBetween& f : spec.fills) {
     std::vector<double> px, py;
     for (std::size_t i = 0; i < f.x.size(); ++i) {
@@ -181,12 +204,13 @@ std::string LinePlot(const LinePlotSpec& original) {
     }
     svg.Polygon(px, py, f.css_class);
   }
-  DrawAxes(svg, area, xt, yt, x, y, spec.axes);
-  if (spec.y_reference) {
-    svg.Line(
-        area.left, y(*spec.y_reference), area.right(), y(*spec.y_reference), "reference");
-  }
+}
 
+// The series (finite points only) and the annotations.
+void DrawSeries(Svg& svg,
+                const LinePlotSpec& spec,
+                const LinearScale& x,
+                const LinearScale& y) {
   for (const Series& s : spec.series) {
     std::vector<double> px;
     std::vector<double> py;
@@ -211,6 +235,36 @@ std::string LinePlot(const LinePlotSpec& original) {
     svg.Marker(a.style.marker, x(a.x), y(a.y), a.size, a.style);
     svg.CloseGroup();
   }
+}
+
+}  // namespace
+
+std::string LinePlot(const LinePlotSpec& original) {
+  const LinePlotSpec log_spec =
+      original.log_x || original.log_y ? ToLogScales(original) : LinePlotSpec{};
+  const LinePlotSpec& spec = original.log_x || original.log_y ? log_spec : original;
+  const std::vector<LegendEntry> legend = LegendOf(spec);
+  const double plot_width = spec.width - kMargins.left - kMargins.right;
+  const double legend_height = LegendHeight(legend, plot_width);
+
+  PlotArea area{kMargins.left,
+                kMargins.top,
+                plot_width,
+                spec.height - kMargins.top - kMargins.bottom};
+  Svg svg(spec.width,
+          spec.height + (legend_height > 0 ? legend_height + kMargins.legend_gap : 0),
+          spec.aria_label);
+  const AxesLayout axes = ChooseAxes(spec, area);
+  const LinearScale x{axes.xr.lo, axes.xr.hi, area.left, area.right()};
+  const LinearScale y{axes.yr.lo, axes.yr.hi, area.bottom(), area.top};
+  DrawBands(svg, spec, area, x);
+  DrawFills(svg, spec, x, y, axes.yr);
+  DrawAxes(svg, area, axes.xt, axes.yt, x, y, spec.axes);
+  if (spec.y_reference) {
+    svg.Line(
+        area.left, y(*spec.y_reference), area.right(), y(*spec.y_reference), "reference");
+  }
+  DrawSeries(svg, spec, x, y);
   if (legend_height > 0) {
     DrawLegend(svg, legend, area.left, spec.height + kMargins.legend_gap, plot_width);
   }

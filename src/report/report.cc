@@ -34,7 +34,8 @@ std::string RenderReport(const ReportInputs& inputs) {
                            inputs.calibration ? &*inputs.calibration : nullptr);
   }
   if (inputs.repeatability) html += RepeatabilitySection(*inputs.repeatability);
-  if (inputs.verification) html += VerificationSection(*inputs.verification);
+  if (inputs.verification)
+    html += VerificationSection(*inputs.verification, inputs.explain_advice);
   if (inputs.noise) html += NoiseSection(*inputs.noise);
   if (!inputs.calibration && !inputs.session && !inputs.repeatability &&
       !inputs.verification && !inputs.noise) {

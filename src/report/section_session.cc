@@ -38,11 +38,10 @@ bool PositionsBelongTo(const Calibration& c, double t0, double t1) {
   return 2 * inside > c.positions.size();
 }
 
-}  // namespace
-
-std::string SessionSection(const ReportSession& session, const Calibration* calibration) {
+// The recording's figures: source, length, rate, units, what the detector
+// found.
+std::string SessionMeta(const ReportSession& session) {
   const Recording& r = session.recording;
-  std::string html = "<section id=\"session\">\n<h2>Session</h2>\n";
   Table meta("meta");
   meta.Row({"Recording", r.source});
   meta.Row({"Samples", std::to_string(r.size())});
@@ -67,7 +66,48 @@ std::string SessionSection(const ReportSession& session, const Calibration* cali
                         UnitLabel(r.units),
                         Significant(session.detection.quiet_level, 3),
                         UnitLabel(r.units))});
-  html += meta.Finish();
+  return meta.Finish();
+}
+
+// The positions of the calibration (numbered as in its section) or, without
+// one that belongs to this recording, the detected intervals, as bands.
+void AddPositionBands(const ReportSession& session,
+                      const Calibration* calibration,
+                      bool use_calibration,
+                      double t0,
+                      LinePlotSpec& spec) {
+  bool any_excluded = false;
+  if (use_calibration) {
+    for (std::size_t k = 0; k < calibration->positions.size(); ++k) {
+      const PositionSummary& p = calibration->positions[k];
+      spec.bands.push_back({p.start_s - t0,
+                            p.end_s - t0,
+                            std::to_string(k + 1),
+                            p.used ? "band" : "band-excluded"});
+      any_excluded |= !p.used;
+    }
+    spec.extra_legend.push_back(
+        {"position of the calibration (numbered)", {}, true, "band", false});
+    if (any_excluded) {
+      spec.extra_legend.push_back(
+          {"position excluded from the fit", {}, true, "band-excluded", false});
+    }
+  } else {
+    for (std::size_t k = 0; k < session.detection.intervals.size(); ++k) {
+      const StaticInterval& s = session.detection.intervals[k];
+      spec.bands.push_back({s.start_s - t0, s.end_s - t0, std::to_string(k + 1), "band"});
+    }
+    spec.extra_legend.push_back(
+        {"static interval detected (numbered)", {}, true, "band", false});
+  }
+}
+
+}  // namespace
+
+std::string SessionSection(const ReportSession& session, const Calibration* calibration) {
+  const Recording& r = session.recording;
+  std::string html = "<section id=\"session\">\n<h2>Session</h2>\n";
+  html += SessionMeta(session);
   if (!r.warnings.empty()) html += WarningsList(r.warnings);
   if (r.empty()) return html + Paragraph("The recording is empty.") + "</section>\n";
 
@@ -93,30 +133,7 @@ std::string SessionSection(const ReportSession& session, const Calibration* cali
   }
   const bool use_calibration =
       calibration && PositionsBelongTo(*calibration, r.time_s.front(), r.time_s.back());
-  bool any_excluded = false;
-  if (use_calibration) {
-    for (std::size_t k = 0; k < calibration->positions.size(); ++k) {
-      const PositionSummary& p = calibration->positions[k];
-      spec.bands.push_back({p.start_s - t0,
-                            p.end_s - t0,
-                            std::to_string(k + 1),
-                            p.used ? "band" : "band-excluded"});
-      any_excluded |= !p.used;
-    }
-    spec.extra_legend.push_back(
-        {"position of the calibration (numbered)", {}, true, "band", false});
-    if (any_excluded) {
-      spec.extra_legend.push_back(
-          {"position excluded from the fit", {}, true, "band-excluded", false});
-    }
-  } else {
-    for (std::size_t k = 0; k < session.detection.intervals.size(); ++k) {
-      const StaticInterval& s = session.detection.intervals[k];
-      spec.bands.push_back({s.start_s - t0, s.end_s - t0, std::to_string(k + 1), "band"});
-    }
-    spec.extra_legend.push_back(
-        {"static interval detected (numbered)", {}, true, "band", false});
-  }
+  AddPositionBands(session, calibration, use_calibration, t0, spec);
   html += Figure(
       LinePlot(spec),
       use_calibration

@@ -187,9 +187,25 @@ std::string ErrorFigure(const VerificationSummary& v) {
                 "same time (reference interpolated linearly).");
 }
 
+// No paths: said as a fact; what would give them (the trajectories of the
+// verification) in the caller's words when it gives them.
+std::string NoTrajectoriesNote(
+    const std::function<std::string(const Advice&)>& explain_advice) {
+  Advice give_paths;
+  give_paths.settings = {{Option::kVerifyTrajectories, ""}};
+  give_paths.stage = Stage::kReport;
+  const std::string advice = explain_advice ? explain_advice(give_paths) : std::string();
+  return fmt::format(
+      "No trajectories were available: the result names no trajectory files and none "
+      "were given{}.",
+      advice.empty() ? "" : fmt::format(" ({})", advice));
+}
+
 }  // namespace
 
-std::string VerificationSection(const VerificationSummary& v) {
+std::string VerificationSection(
+    const VerificationSummary& v,
+    const std::function<std::string(const Advice&)>& explain_advice) {
   std::string html =
       "<section id=\"verification\">\n<h2>Verification against GNSS</h2>\n";
   html += MetricsTable(v);
@@ -211,10 +227,7 @@ std::string VerificationSection(const VerificationSummary& v) {
   }
   const std::string paths = PathFigure(v);
   if (paths.empty()) {
-    html += Paragraph(
-        "No trajectories were available: the result names no trajectory files and "
-        "none were given (mpcal report --verify-trajectories PREFIX).",
-        "note");
+    html += Paragraph(NoTrajectoriesNote(explain_advice), "note");
   } else {
     html += paths;
     // A raw path that wandered off shrinks the reference to a dot: zoom.

@@ -2,6 +2,7 @@
 // made from one input. report.cc puts together those whose input is given.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "mpcal/calibration.h"
@@ -30,7 +31,10 @@ std::string RepeatabilitySection(const RepeatabilityResult& repeatability);
 std::string NoiseSection(const NoiseFile& noise);
 
 /// Start-to-end distances and the paths in east-north metres; error against
-/// time when the paths are given.
-std::string VerificationSection(const VerificationSummary& verification);
+/// time when the paths are given. Without paths, says so, with the advice
+/// worded by `explain_advice` when the caller gives it.
+std::string VerificationSection(
+    const VerificationSummary& verification,
+    const std::function<std::string(const Advice&)>& explain_advice);
 
 }  // namespace mpcal::report

@@ -1,7 +1,7 @@
 #include "report/svg.h"
 
+#include <algorithm>
 #include <array>
-#include <cassert>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -107,11 +107,12 @@ void Svg::Line(double x1,
 void Svg::Polyline(const std::vector<double>& x,
                    const std::vector<double>& y,
                    const SeriesStyle& style) {
-  assert(x.size() == y.size());
-  if (x.size() < 2) return;
+  // The pairs given: a longer x or y is not read past the other's end.
+  const std::size_t n = std::min(x.size(), y.size());
+  if (n < 2) return;
   std::string points;
-  points.reserve(x.size() * 14);
-  for (std::size_t i = 0; i < x.size(); ++i) {
+  points.reserve(n * 14);
+  for (std::size_t i = 0; i < n; ++i) {
     if (i) points += ' ';
     points += Coord(x[i]);
     points += ',';
@@ -140,10 +141,11 @@ void Svg::Rect(double x,
 void Svg::Polygon(const std::vector<double>& x,
                   const std::vector<double>& y,
                   std::string_view cls) {
-  assert(x.size() == y.size());
-  if (x.size() < 3) return;
+  // The pairs given: a longer x or y is not read past the other's end.
+  const std::size_t n = std::min(x.size(), y.size());
+  if (n < 3) return;
   std::string points;
-  for (std::size_t i = 0; i < x.size(); ++i) {
+  for (std::size_t i = 0; i < n; ++i) {
     if (i) points += ' ';
     points += Coord(x[i]);
     points += ',';
@@ -236,13 +238,13 @@ void Svg::OpenGroup(std::string_view cls, std::string_view title) {
 }
 
 void Svg::CloseGroup() {
-  assert(open_groups_ > 0);
+  if (open_groups_ == 0) return;  // nothing open: no stray </g>
   body_ += "</g>\n";
   --open_groups_;
 }
 
 std::string Svg::Finish() {
-  assert(open_groups_ == 0);
+  while (open_groups_ > 0) CloseGroup();  // well-formed whatever the caller did
   std::string out = std::move(body_);
   out += "</svg>\n";
   body_.clear();

@@ -1,6 +1,5 @@
 // Still test, strapdown integration, alignment and metrics.
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -17,7 +16,9 @@ namespace {
 constexpr double kQuietQuantile = 0.10;
 
 void ThrowIfInvalid(const std::string& problem, std::string_view what) {
-  if (!problem.empty()) throw Error(fmt::format("{}: {}", what, problem));
+  if (!problem.empty()) {
+    throw Error(ErrorKind::kOption, fmt::format("{}: {}", what, problem));
+  }
 }
 
 // Centred moving standard deviation (norm over the three axes) with the
@@ -70,6 +71,27 @@ double Quantile(std::vector<double> values, double q) {
 
 Eigen::Vector3d Horizontal(const Eigen::Vector3d& v) { return {v.x(), v.y(), 0.0}; }
 
+// Levelling and the gyroscope's bias need the log to start at rest for
+// options.min_initial_rest_s; z-up needs no levelling (the advice).
+void CheckInitialRest(std::span<const double> time_s,
+                      std::size_t rest_end,
+                      bool gyro_used,
+                      const IntegrateOptions& options) {
+  const double rest_s = rest_end > 0 ? time_s[rest_end - 1] - time_s[0] : 0.0;
+  const bool needs_rest = options.mount == MountMode::kLevel || gyro_used;
+  if (!needs_rest || (rest_end > 0 && rest_s >= options.min_initial_rest_s)) return;
+  Advice advice;
+  if (options.mount == MountMode::kLevel) advice.settings = {{Option::kMount, "z-up"}};
+  throw Error(
+      ErrorKind::kSession,
+      fmt::format("the log starts with {:.2f} s at rest, but {} needs at least "
+                  "{} s still at the start; record a rest before walking",
+                  rest_s,
+                  options.mount == MountMode::kLevel ? "levelling" : "the gyroscope bias",
+                  options.min_initial_rest_s),
+      advice);
+}
+
 }  // namespace
 
 std::string_view ToString(MountMode mode) {
@@ -111,14 +133,18 @@ StillResult DetectStill(std::span<const double> time_s,
   const std::size_t n = time_s.size();
   if (specific_force_mps2.size() != n ||
       (!gyro_radps.empty() && gyro_radps.size() != n)) {
-    throw Error("still test: time, accelerometer and gyroscope have different lengths");
+    throw Error(ErrorKind::kInput,
+                "still test: time, accelerometer and gyroscope have different lengths");
   }
-  if (n < 3) throw Error(fmt::format("still test: {} samples are too few", n));
+  if (n < 3)
+    throw Error(ErrorKind::kInput, fmt::format("still test: {} samples are too few", n));
   const double span_s = time_s.back() - time_s.front();
   const double dt = span_s / static_cast<double>(n - 1);
-  if (!(dt > 0.0)) throw Error("still test: the sample times do not increase");
+  if (!(dt > 0.0))
+    throw Error(ErrorKind::kInput, "still test: the sample times do not increase");
   if (span_s < options.window_s) {
     throw Error(
+        ErrorKind::kInput,
         fmt::format("still test: the log ({:.2f} s) is shorter than one window ({} s)",
                     span_s,
                     options.window_s));
@@ -191,26 +217,15 @@ IntegrationResult IntegrateTrajectory(
   if (specific_force_mps2.size() != n || still.still.size() != n ||
       (!gyro_radps.empty() && gyro_radps.size() != n)) {
     throw Error(
+        ErrorKind::kInput,
         "integration: time, readings, gyroscope and still flags differ in length");
   }
-  if (n < 2) throw Error("integration: fewer than two samples");
+  if (n < 2) throw Error(ErrorKind::kInput, "integration: fewer than two samples");
 
   IntegrationResult result;
   result.gyro_used = options.use_gyro && !gyro_radps.empty();
   const std::size_t rest_end = still.initial_rest_end;
-  const double rest_s = rest_end > 0 ? time_s[rest_end - 1] - time_s[0] : 0.0;
-  const bool needs_rest = options.mount == MountMode::kLevel || result.gyro_used;
-  if (needs_rest && (rest_end == 0 || rest_s < options.min_initial_rest_s)) {
-    throw Error(fmt::format(
-        "the log starts with {:.2f} s at rest, but {} needs at least {} s still at the "
-        "start; "
-        "record a rest before walking{}",
-        rest_s,
-        options.mount == MountMode::kLevel ? "levelling" : "the gyroscope bias",
-        options.min_initial_rest_s,
-        options.mount == MountMode::kLevel ? ", or state the mount with --mount z-up"
-                                           : ""));
-  }
+  CheckInitialRest(time_s, rest_end, result.gyro_used, options);
   if (rest_end > 0) {
     Eigen::Vector3d f_mean = Eigen::Vector3d::Zero();
     Eigen::Vector3d w_mean = Eigen::Vector3d::Zero();
@@ -261,7 +276,15 @@ IntegrationResult IntegrateTrajectory(
 }
 
 Eigen::Vector3d TimedPath::At(double t) const {
-  assert(!time_s.empty());
+  // Release builds drop asserts: an empty path would read past its end.
+  if (time_s.empty() || position_m.size() != time_s.size()) {
+    throw Error(ErrorKind::kInput,
+                fmt::format("a path of {} times and {} positions has no position at "
+                            "{} s",
+                            time_s.size(),
+                            position_m.size(),
+                            t));
+  }
   if (t <= time_s.front()) return position_m.front();
   if (t >= time_s.back()) return position_m.back();
   const auto it = std::upper_bound(time_s.begin(), time_s.end(), t);
@@ -290,6 +313,11 @@ double AlignToReference(TimedPath& path,
 }
 
 double HorizontalPathLength(std::span<const Eigen::Vector3d> positions_m, double step_m) {
+  // A NaN step would count no step at all: a length of (almost) zero.
+  if (!(step_m >= 0.0) || !std::isfinite(step_m)) {
+    throw Error(ErrorKind::kOption,
+                fmt::format("the path length's step must be >= 0 m (got {})", step_m));
+  }
   if (positions_m.empty()) return 0.0;
   double length = 0.0;
   Eigen::Vector3d last = Horizontal(positions_m.front());

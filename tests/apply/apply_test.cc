@@ -178,9 +178,12 @@ TEST(CheckCalibrationApplies, CountsOnlyWithCounts) {
     CheckCalibrationApplies(counts, AccelUnits::kG);
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
-    EXPECT_THAT(
-        e.what(),
-        AllOf(HasSubstr("raw counts"), HasSubstr("'g'"), HasSubstr("--units counts")));
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("raw counts"), HasSubstr("'g'")));
+    // The advice: read the log in counts (the command says "--units counts").
+    EXPECT_EQ(e.kind(), ErrorKind::kUnits);
+    ASSERT_EQ(e.advice().settings.size(), 1u);
+    EXPECT_EQ(e.advice().settings[0].option, Option::kLogUnits);
+    EXPECT_EQ(e.advice().settings[0].value, "counts");
   }
   const Calibration mps2 = ConsumerCalibration(AccelUnits::kMps2, 1.0);
   EXPECT_THROW(CheckCalibrationApplies(mps2, AccelUnits::kCounts), Error);
@@ -304,13 +307,20 @@ TEST(ApplyCalibration, WarnsWhenTheMagnitudeAtRestIsNotGravity) {
   const SyntheticLog log = MakeLog(truth, 1.0 / kGravity, 100);
   const std::string in = dir.Write("in.csv", log.text);
   const ApplyResult result = ApplyCalibration(truth, in, dir.Path("out.csv"), {});
-  ASSERT_EQ(result.warnings.size(), 1u);
-  EXPECT_THAT(result.warnings[0],
-              AllOf(HasSubstr("magnitude at rest"), HasSubstr("--units g")));
+  EXPECT_TRUE(result.warnings.empty());
+  ASSERT_TRUE(result.rest_mismatch);
+  EXPECT_THAT(result.rest_mismatch->what, HasSubstr("magnitude at rest"));
+  // The advice: read the log in g (the command says "--units g").
+  EXPECT_EQ(result.rest_mismatch->kind, RestMismatchKind::kLooksLikeG);
+  ASSERT_EQ(result.rest_mismatch->advice.settings.size(), 1u);
+  EXPECT_EQ(result.rest_mismatch->advice.settings[0].option, Option::kLogUnits);
+  EXPECT_EQ(result.rest_mismatch->advice.settings[0].value, "g");
   // Read with the right units the same log is fine.
   ApplyOptions in_g;
   in_g.log.units = AccelUnits::kG;
-  EXPECT_TRUE(ApplyCalibration(truth, in, dir.Path("out.csv"), in_g).warnings.empty());
+  const ApplyResult right = ApplyCalibration(truth, in, dir.Path("out.csv"), in_g);
+  EXPECT_TRUE(right.warnings.empty());
+  EXPECT_FALSE(right.rest_mismatch);
 }
 
 TEST(ApplyCalibration, RefusesMismatchedUnitsBeforeWritingAnything) {

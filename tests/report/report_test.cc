@@ -256,11 +256,23 @@ TEST(Report, ShowsTheBiasOfARawCountsCalibrationInCounts) {
 TEST(Report, VerificationWithoutPathsSaysHowToGiveThem) {
   ReportInputs in;
   in.verification = testing::FixtureVerification(false);
+  // The advice in the caller's words (the mpcal command's: its flag).
+  in.explain_advice = [](const Advice& advice) {
+    return advice.settings.size() == 1 &&
+                   advice.settings[0].option == Option::kVerifyTrajectories &&
+                   advice.stage == Stage::kReport
+               ? std::string("mpcal report --verify-trajectories PREFIX")
+               : std::string("?");
+  };
   const std::string html = RenderReport(in);
   EXPECT_THAT(html, HasSubstr("<td>15.30</td>"));
   EXPECT_THAT(html, HasSubstr("<td>1.60</td>"));
   EXPECT_THAT(html, HasSubstr("--verify-trajectories"));
   EXPECT_EQ(Count(html, "<svg "), 0u);
+  // Without a caller's words, the page states the fact only.
+  in.explain_advice = nullptr;
+  EXPECT_THAT(RenderReport(in),
+              HasSubstr("the result names no trajectory files and none were given."));
 }
 
 TEST(Report, RepeatabilityWithoutTrialSigmaPlotsEachUnitApart) {

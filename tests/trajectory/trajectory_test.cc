@@ -194,8 +194,16 @@ TEST(IntegrateTrajectory, LevellingWithoutAnInitialRestIsAnError) {
   const Signal s = RestMoveRest(0.0, 5.0, 0.01, 4);
   StillResult still;
   still.still.assign(s.t.size(), false);
-  EXPECT_THAT([&] { IntegrateTrajectory(s.t, s.f, {}, still, IntegrateOptions{}); },
-              ThrowsMessage<Error>(HasSubstr("--mount z-up")));
+  // The advice: state the mount as z-up (the command says "--mount z-up").
+  try {
+    IntegrateTrajectory(s.t, s.f, {}, still, IntegrateOptions{});
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("record a rest before walking"));
+    ASSERT_EQ(e.advice().settings.size(), 1u);
+    EXPECT_EQ(e.advice().settings[0].option, Option::kMount);
+    EXPECT_EQ(e.advice().settings[0].value, "z-up");
+  }
   IntegrateOptions zup;
   zup.mount = MountMode::kZUp;
   EXPECT_NO_THROW(IntegrateTrajectory(s.t, s.f, {}, still, zup));

@@ -336,8 +336,16 @@ TEST(Verify, WrongUnitsAndInputsAreErrors) {
               ThrowsMessage<Error>(HasSubstr("raw counts")));
   Calibration in_g = w.truth;
   in_g.input_units = AccelUnits::kG;
-  EXPECT_THAT([&] { Verify(w.recording, ref, in_g, {}); },
-              ThrowsMessage<Error>(HasSubstr("pass --units g")));
+  // The advice: read the log in g (the command says "--units g").
+  try {
+    Verify(w.recording, ref, in_g, {});
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kUnits);
+    ASSERT_EQ(e.advice().settings.size(), 1u);
+    EXPECT_EQ(e.advice().settings[0].option, Option::kLogUnits);
+    EXPECT_EQ(e.advice().settings[0].value, "g");
+  }
   GnssTrack one = ref;
   one.time_s.resize(1);
   one.enu_m.resize(1);
