@@ -113,10 +113,12 @@ TurnProblem BuildTurnProblem(const Recording& rec,
                              double min_f,
                              double carry_radps_per_unit) {
   if (rec.gyro_radps.size() != rec.size() || rec.empty()) {
-    throw Error(fmt::format("{}: the log has no gyroscope readings", rec.source));
+    throw Error(ErrorKind::kColumns,
+                fmt::format("{}: the log has no gyroscope readings", rec.source));
   }
   if (intervals.size() < 2) {
-    throw Error(fmt::format("{}: {} static position(s) give no turn for the gyroscope",
+    throw Error(ErrorKind::kSession,
+                fmt::format("{}: {} static position(s) give no turn for the gyroscope",
                             rec.source,
                             intervals.size()));
   }
@@ -124,11 +126,11 @@ TurnProblem BuildTurnProblem(const Recording& rec,
     const StaticInterval& in = intervals[k];
     if (in.begin >= in.end || in.end > rec.size() ||
         (k > 0 && in.begin < intervals[k - 1].end)) {
-      throw Error(
-          fmt::format("{}: static position {} lies outside the recording or "
-                      "overlaps the one before",
-                      rec.source,
-                      k + 1));
+      throw Error(ErrorKind::kInput,
+                  fmt::format("{}: static position {} lies outside the recording or "
+                              "overlaps the one before",
+                              rec.source,
+                              k + 1));
     }
   }
 
@@ -283,6 +285,23 @@ Eigen::Matrix3d TurnResidual(const TurnData& turn,
   if (residual != nullptr) *residual = turn.basis_to.transpose() * carried;
   // R' = R exp([δθ]×) carries u to exp(−[δθ]×) Rᵀu ≈ Rᵀu + [Rᵀu]× δθ.
   if (jacobian != nullptr) *jacobian = turn.basis_to.transpose() * Hat(carried) * d_theta;
+  return r;
+}
+
+Eigen::Matrix3d TurnResidualAlong(const TurnData& turn,
+                                  const Eigen::Matrix3d& m,
+                                  const Eigen::Matrix3d& direction,
+                                  Eigen::Vector2d* residual,
+                                  Eigen::Vector2d* derivative) {
+  Eigen::Vector3d d_theta = Eigen::Vector3d::Zero();
+  const Eigen::Matrix3d r =
+      derivative != nullptr ? RotationOverTurnAlong(m, turn.steps, direction, &d_theta)
+                            : RotationOverTurn(m, turn.steps, nullptr);
+  const Eigen::Vector3d carried = r.transpose() * turn.u_from;
+  if (residual != nullptr) *residual = turn.basis_to.transpose() * carried;
+  if (derivative != nullptr) {
+    *derivative = turn.basis_to.transpose() * Hat(carried) * d_theta;
+  }
   return r;
 }
 
