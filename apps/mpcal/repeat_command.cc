@@ -19,6 +19,7 @@
 #include "calibration_table.h"
 #include "cli_options.h"
 #include "command.h"
+#include "gyro_table.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/calibration_file.h"
@@ -206,6 +207,7 @@ void Run(RepeatFlags& f) {
 
   const RepeatabilityResult result = AnalyzeRepeatability(trials, f.inputs, f.repeat);
   fmt::print("{}\n{}", FormatRepeatabilityTable(result), RepeatabilityVerdict(result));
+  fmt::print("{}", FormatGyroRepeatTable(trials, f.inputs));  // IMU trials (gyro_table.h)
   for (const std::string& note : result.notes) fmt::print("note: {}\n", note);
   if (!f.json.empty()) {
     WriteFileAtomically(f.json, RepeatabilityToJson(result));

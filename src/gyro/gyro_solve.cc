@@ -190,7 +190,7 @@ bool Plausible(const Eigen::Matrix3d& m) {
 Eigen::Matrix<double, 9, 9> PseudoInverse(
     const Eigen::Matrix<double, 9, 9>& information) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> eig(information);
-  const Eigen::Matrix<double, 9, 1> values = eig.eigenvalues();
+  const Eigen::Matrix<double, 9, 1>& values = eig.eigenvalues();
   const double floor = 1e-14 * values.cwiseAbs().maxCoeff();
   Eigen::Matrix<double, 9, 1> inverse = Eigen::Matrix<double, 9, 1>::Zero();
   for (int i = 0; i < 9; ++i) {
