@@ -40,9 +40,15 @@ for _ in $(seq "$reps"); do
   run accel "$mpcal" calibrate "$data/xsens_acc.mat" --units counts --gravity 9.81744
 done
 floor_us=$(( $(median floor_acc 1) + $(median floor_gyro 1) ))
+floor_cpu=$(( $(median floor_acc 2) + $(median floor_gyro 2) ))
 imu_us=$(median imu 1)
 acc_us=$(median accel 1)
-awk -v f="$floor_us" -v i="$imu_us" -v a="$acc_us" -v ic="$(median imu 2)" 'BEGIN {
-  printf "xsens calibrate accelerometer + gyroscope: %.3f s (CPU %.3f s), %.1f x the parse floor of both files (%.3f s); accelerometer alone %.3f s; target < 0.1 s: %s\n",
-    i / 1e6, ic / 1e3, i / f, f / 1e6, a / 1e6, (i < 1e5 ? "MET" : "NOT MET")
+# The target is on the wall time of an idle machine; on a shared one the CPU
+# time (user + sys, ms resolution) is the figure that does not depend on the
+# other jobs, so both are printed with their ratio to the floor.
+awk -v f="$floor_us" -v fc="$floor_cpu" -v i="$imu_us" -v a="$acc_us" -v ic="$(median imu 2)" \
+  -v ac="$(median accel 2)" 'BEGIN {
+  printf "xsens calibrate accelerometer + gyroscope: wall %.3f s, %.1f x the parse floor of both files (%.3f s); CPU %.3f s, %.1f x the floor CPU (%.3f s); accelerometer alone wall %.3f s, CPU %.3f s; target < 0.1 s: wall %s, CPU %s\n",
+    i / 1e6, i / f, f / 1e6, ic / 1e3, (fc > 0 ? ic / fc : 0), fc / 1e3, a / 1e6, ac / 1e3,
+    (i < 1e5 ? "MET" : "NOT MET"), (ic < 100 ? "MET" : "NOT MET")
 }'

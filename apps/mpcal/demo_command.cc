@@ -15,9 +15,11 @@
 
 #include "calibration_table.h"
 #include "command.h"
+#include "gyro_table.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/calibration_file.h"
 #include "mpcal/gnss.h"
+#include "mpcal/gyro.h"
 #include "mpcal/repeat.h"
 #include "mpcal/report.h"
 #include "mpcal/simulate.h"
@@ -67,13 +69,41 @@ VerifyResult DemoVerification(const SimulateStaticOptions& sim,
   return Verify(walk.recording, reference, calibration, options);
 }
 
+// The gyroscope of the same session beside the accelerometer: its estimate
+// against the truth and the Cramér-Rao bound of the turns.
+void PrintGyroscope(const SimulatedSession& session, const CalibrateResult& result) {
+  if (!result.gyro || !session.truth.gyroscope) return;
+  const GyroResult& gyro = *result.gyro;
+  fmt::print("\n{}{}",
+             FormatGyroTable(gyro.calibration, &*session.truth.gyroscope, "truth"),
+             FormatGyroSummary(gyro));
+  for (const std::string& line : GyroFindingMessages(gyro)) fmt::print("{}\n", line);
+  if (!gyro.converged()) return;
+  const Eigen::Matrix<double, 9, 9> bound = GyroCramerRaoBound(session.recording,
+                                                               result.detection.intervals,
+                                                               result.calibration,
+                                                               *session.truth.gyroscope);
+  double sum = 0.0;
+  for (int p = 0; p < 9; ++p) {
+    const double err =
+        gyro.calibration.m(p / 3, p % 3) - session.truth.gyroscope->m(p / 3, p % 3);
+    sum += err * err / bound(p, p);
+  }
+  fmt::print(
+      "RMS of (estimate - truth) / Cramér-Rao bound over the 9 entries of the "
+      "gyroscope's M: {:.2f}\n",
+      std::sqrt(sum / 9.0));
+}
+
 void Run(const DemoFlags& f) {
   SimulateStaticOptions sim;
   sim.device = FindPreset(f.preset);
   sim.seed = f.seed;
+  sim.gyro = true;
   const SimulatedSession session = SimulateStatic(sim);
   fmt::print(
-      "mpcal demo: a simulated {} session, {} positions held {:.0f} s each at "
+      "mpcal demo: a simulated {} session (accelerometer and gyroscope), {} positions "
+      "held {:.0f} s each at "
       "{:.0f} Hz (seed {}), calibrated as 'mpcal calibrate' would.\n\n",
       sim.device.name,
       session.directions.size(),
@@ -97,6 +127,7 @@ void Run(const DemoFlags& f) {
       "(an efficient estimator gives 1 on average)\n",
       std::sqrt(z.squaredNorm() / 9.0));
   PrintWarnings(result.warnings);
+  PrintGyroscope(session, result);
 
   const RepeatabilityResult repeatability = DemoRepeatability(sim, result.calibration);
   fmt::print(
@@ -144,8 +175,8 @@ void AddDemoCommand(CLI::App& root) {
   auto flags = std::make_shared<DemoFlags>();
   CLI::App* app = root.add_subcommand(
       "demo",
-      "Simulate a device, calibrate it, compare with the truth; write a report with "
-      "every section");
+      "Simulate a device (accelerometer and gyroscope), calibrate it, compare with the "
+      "truth and the Cramér-Rao bound; write a report with every section");
   app->add_option("--preset", flags->preset, "Device: colibri, inertiacube3 or mti-g")
       ->capture_default_str();
   app->add_option("--seed", flags->seed, "Random seed")->capture_default_str();

@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "mpcal/repeat.h"
+
 namespace mpcal::cli {
 namespace {
 
@@ -171,6 +173,120 @@ std::vector<std::string> GyroFindingMessages(const GyroResult& r) {
         break;
     }
   }
+  return out;
+}
+
+namespace {
+
+// One row of the repeat table: a value and its 1σ per trial, in display
+// units.
+struct RepeatRow {
+  std::string label;
+  std::string unit;
+  std::vector<double> values;
+  std::vector<double> sigmas;  // empty: a trial without 1σ
+};
+
+std::vector<RepeatRow> GyroRepeatRows(const std::vector<const GyroCalibration*>& g) {
+  std::vector<RepeatRow> rows;
+  for (int p = 0; p < 9; ++p) {
+    const int r = p / 3;
+    const int c = p % 3;
+    RepeatRow row;
+    row.label = r == c ? fmt::format("scale-factor error {}", kAxis[r])
+                       : fmt::format("misalignment m_{}{}", kAxis[r], kAxis[c]);
+    row.unit = r == c ? "ppm" : "mrad";
+    const double factor = r == c ? 1e6 : 1e3;
+    for (const GyroCalibration* t : g) {
+      row.values.push_back((t->m(r, c) - (r == c ? 1.0 : 0.0)) * factor);
+      if (t->m_covariance) row.sigmas.push_back(t->MStd()(r, c) * factor);
+    }
+    rows.push_back(row);
+  }
+  for (int i = 0; i < 3; ++i) {
+    RepeatRow row{fmt::format("bias {} (mean)", kAxis[i]), "deg/s", {}, {}};
+    for (const GyroCalibration* t : g) {
+      row.values.push_back(t->bias_radps[i] * kDegPerRad);
+      if (t->bias_std_radps) row.sigmas.push_back((*t->bias_std_radps)[i] * kDegPerRad);
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// Sample std, and the chi-square p-value of the trials against their
+// weighted mean (negative when a trial has no 1σ).
+std::pair<double, double> Spread(const RepeatRow& row) {
+  const auto n = static_cast<double>(row.values.size());
+  double mean = 0.0;
+  for (double v : row.values) mean += v / n;
+  double ss = 0.0;
+  for (double v : row.values) ss += (v - mean) * (v - mean);
+  const double std = std::sqrt(ss / (n - 1.0));
+  if (row.sigmas.size() != row.values.size()) return {std, -1.0};
+  double w_sum = 0.0;
+  double wx = 0.0;
+  for (std::size_t i = 0; i < row.values.size(); ++i) {
+    const double w = 1.0 / (row.sigmas[i] * row.sigmas[i]);
+    w_sum += w;
+    wx += w * row.values[i];
+  }
+  double chi2 = 0.0;
+  for (std::size_t i = 0; i < row.values.size(); ++i) {
+    chi2 += std::pow((row.values[i] - wx / w_sum) / row.sigmas[i], 2);
+  }
+  return {std, ChiSquareUpperTail(chi2, static_cast<int>(row.values.size()) - 1)};
+}
+
+}  // namespace
+
+std::string FormatGyroRepeatTable(std::span<const Calibration> trials,
+                                  std::span<const std::string> names) {
+  std::vector<const GyroCalibration*> g;
+  std::vector<std::string> used;
+  for (std::size_t i = 0; i < trials.size(); ++i) {
+    if (!trials[i].gyroscope) continue;
+    g.push_back(&*trials[i].gyroscope);
+    used.push_back(i < names.size() ? names[i] : fmt::format("trial {}", i + 1));
+  }
+  if (g.size() < 2) return "";
+  std::string out =
+      fmt::format("\ngyroscope over {} trials (ω = M (raw − b)):\n", g.size());
+  out += fmt::format("{:<22} {:<6}", "parameter", "unit");
+  for (std::size_t i = 0; i < g.size(); ++i)
+    out += fmt::format(" {:>18}", fmt::format("trial {}", i + 1));
+  out += fmt::format(" {:>10} {:>10}  {}\n", "mean", "std", "between trials");
+  std::vector<std::string> changed;
+  for (const RepeatRow& row : GyroRepeatRows(g)) {
+    out += fmt::format("{:<22} {:<6}", row.label, row.unit);
+    for (std::size_t i = 0; i < row.values.size(); ++i) {
+      out +=
+          row.sigmas.size() == row.values.size()
+              ? fmt::format(" {:>18}",
+                            fmt::format("{:.3f} ± {:.3f}", row.values[i], row.sigmas[i]))
+              : fmt::format(" {:>18.3f}", row.values[i]);
+    }
+    double mean = 0.0;
+    for (double v : row.values) mean += v / static_cast<double>(row.values.size());
+    const auto [std, p] = Spread(row);
+    const bool differs = p >= 0.0 && p < 0.01;
+    if (differs) changed.push_back(row.label);
+    out += fmt::format(
+        " {:>10.3f} {:>10.3f}  {}\n",
+        mean,
+        std,
+        p < 0.0 ? "no 1σ"
+                : fmt::format("{} (p = {:.2g})", differs ? "changed" : "consistent", p));
+  }
+  for (std::size_t i = 0; i < used.size(); ++i)
+    out += fmt::format("trial {}: {}\n", i + 1, used[i]);
+  out += changed.empty()
+             ? "gyroscope: every entry consistent between the trials within their 1σ "
+               "(chi-square, 1 % significance).\n"
+             : fmt::format(
+                   "gyroscope: changed between the trials beyond their 1σ: {} "
+                   "(chi-square, 1 % significance).\n",
+                   fmt::join(changed, ", "));
   return out;
 }
 

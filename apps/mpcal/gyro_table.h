@@ -5,10 +5,12 @@
 // `demo`.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
 #include "mpcal/calibrate.h"
+#include "mpcal/calibration.h"
 #include "mpcal/gyro.h"
 #include "mpcal/gyro_calibration.h"
 
@@ -24,5 +26,13 @@ std::string FormatGyroSummary(const GyroResult& result);
 
 /// Each finding as a sentence naming the entries of M and the turns to add.
 std::vector<std::string> GyroFindingMessages(const GyroResult& result);
+
+/// `mpcal repeat` over IMU files or logs with a gyroscope: per entry of M
+/// (ppm, mrad) and bias (deg/s), each trial's value, the mean, the sample
+/// std and whether the trials differ beyond their 1σ (chi-square of the
+/// trials against their weighted mean, 1 % significance). Empty when fewer
+/// than two trials have a gyroscope.
+std::string FormatGyroRepeatTable(std::span<const Calibration> trials,
+                                  std::span<const std::string> names);
 
 }  // namespace mpcal::cli

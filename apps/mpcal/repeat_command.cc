@@ -20,6 +20,7 @@
 #include "cli_options.h"
 #include "command.h"
 #include "explain_repeat.h"
+#include "gyro_table.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/calibration_file.h"
@@ -214,6 +215,7 @@ void Run(RepeatFlags& f) {
     }
   }();
   fmt::print("{}\n{}", FormatRepeatabilityTable(result), RepeatabilityVerdict(result));
+  fmt::print("{}", FormatGyroRepeatTable(trials, f.inputs));  // IMU trials (gyro_table.h)
   for (const std::string& note : result.notes) fmt::print("note: {}\n", note);
   if (!f.json.empty()) {
     WriteFileAtomically(f.json, RepeatabilityToJson(result));

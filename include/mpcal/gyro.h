@@ -184,6 +184,17 @@ Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const Recording& recording,
                                                const Calibration& accel,
                                                const GyroCalibration& truth);
 
+/// The turns between the static positions `intervals` scored with a known
+/// calibration `gyro` (as read from an IMU file; its nominal scale, bias at
+/// every position and g-sensitivity as CalibrateGyroscope uses them): per
+/// turn the tilt residual before (nominal scale, M = I) and after (M), its
+/// 1σ, and the calibrated rotation's angle and axis. No solve.
+/// \throws mpcal::Error as CalibrateGyroscope.
+std::vector<GyroTurn> ScoreGyroTurns(const Recording& recording,
+                                     std::span<const StaticInterval> intervals,
+                                     const Calibration& accel,
+                                     const GyroCalibration& gyro);
+
 /// The rotation of the body over samples [begin, end] of `recording` with
 /// the gyroscope model `gyro` (constant bias), by the exponential map:
 /// R_begin_end, which maps vectors in the body frame at `end` to the body

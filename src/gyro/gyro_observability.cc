@@ -26,7 +26,7 @@ std::vector<GyroFinding> AnalyseGyroObservability(
     Eigen::Matrix<double, 9, 1>* singular_values) {
   std::vector<GyroFinding> findings;
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jacobian, Eigen::ComputeFullV);
-  const Eigen::VectorXd sv = svd.singularValues();
+  const Eigen::VectorXd& sv = svd.singularValues();
   singular_values->setZero();
   for (Eigen::Index k = 0; k < std::min<Eigen::Index>(sv.size(), 9); ++k) {
     (*singular_values)[k] = sv[k];

@@ -9,6 +9,7 @@
 #include <ceres/ceres.h>
 #include <fmt/format.h>
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 
 #include <Eigen/Geometry>
 
@@ -34,6 +35,8 @@ constexpr double kMaxPlausibleMisalignment = 0.5;
 // The a-priori noise level counts as this many residuals of evidence in the
 // variance factor (solve.cc uses the same rule for the accelerometer).
 constexpr double kPriorDof = 10.0;
+// Each turn gives two equations: five turns for the nine entries of M.
+constexpr std::size_t kMinTurns = 5;
 
 class TurnCost : public ceres::SizedCostFunction<2, 9> {
  public:
@@ -60,24 +63,25 @@ class TurnCost : public ceres::SizedCostFunction<2, 9> {
   double sigma_;
 };
 
-// M = k·I, one common scale: for the nominal scale of raw counts.
+// M = k·I, one common scale: for the nominal scale of raw counts. Its
+// derivative along I alone: 3 values per sample where M's needs 27.
 class ScaleCost : public ceres::SizedCostFunction<2, 1> {
  public:
   ScaleCost(const TurnData& turn, double sigma) : turn_(turn), sigma_(sigma) {}
   bool Evaluate(double const* const* parameters,
                 double* residuals,
                 double** jacobians) const override {
-    const Eigen::Matrix3d m = parameters[0][0] * Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
     Eigen::Vector2d r;
-    Eigen::Matrix<double, 2, 9> j;
+    Eigen::Vector2d d;
     const bool want_j = jacobians != nullptr && jacobians[0] != nullptr;
-    internal::TurnResidual(turn_, m, &r, want_j ? &j : nullptr);
+    internal::TurnResidualAlong(
+        turn_, parameters[0][0] * identity, identity, &r, want_j ? &d : nullptr);
     residuals[0] = r[0] / sigma_;
     residuals[1] = r[1] / sigma_;
     if (want_j) {
-      const Eigen::Vector2d d = (j.col(0) + j.col(4) + j.col(8)) / sigma_;
-      jacobians[0][0] = d[0];
-      jacobians[0][1] = d[1];
+      jacobians[0][0] = d[0] / sigma_;
+      jacobians[0][1] = d[1] / sigma_;
     }
     return true;
   }
@@ -87,13 +91,20 @@ class ScaleCost : public ceres::SizedCostFunction<2, 1> {
   double sigma_;
 };
 
+// Levenberg-Marquardt on at most 9 parameters in one block: a dense QR of a
+// 2·turns × 9 Jacobian costs nothing beside the evaluation of the turns, so
+// the solver's options only matter through the evaluations they ask for.
+// Each iteration costs an evaluation of every turn with its Jacobian and one
+// without: the tolerances stop where a further step would move the estimate
+// by less than 1e-4 of its 1σ (the cost is about one per residual, and a
+// step of δ σ changes it by δ²/2: a relative change of 1e-10 is δ ~ 1e-4).
 ceres::Solver::Summary RunSolver(ceres::Problem& problem, int max_iterations) {
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_QR;
   options.max_num_iterations = max_iterations;
-  options.function_tolerance = 1e-12;
+  options.function_tolerance = 1e-10;
   options.gradient_tolerance = 1e-12;
-  options.parameter_tolerance = 1e-12;
+  options.parameter_tolerance = 1e-10;
   options.logging_type = ceres::SILENT;
   options.num_threads = 1;
   ceres::Solver::Summary summary;
@@ -129,19 +140,32 @@ double FitScale(const TurnProblem& problem, double guess, int max_iterations) {
   return k;
 }
 
-// Whitened Jacobian (2·turns × 9) at the effective matrix, per entry of M
-// (the effective matrix over the nominal scale).
-Eigen::MatrixXd WhitenedJacobian(const TurnProblem& problem,
-                                 const Eigen::Matrix3d& m_eff,
-                                 double scale) {
-  Eigen::MatrixXd j(2 * problem.turns.size(), 9);
+// Every turn at one effective matrix (raw increments → rad): rotations,
+// tilts, χ² and the whitened Jacobian per entry of M (the effective matrix
+// over the nominal scale), in one pass over the samples.
+struct TurnEvaluation {
+  std::vector<Eigen::Matrix3d> rotations;
+  std::vector<double> tilts_rad;
+  double chi2 = 0.0;
+  Eigen::MatrixXd jacobian;  // 2·turns × 9
+};
+
+TurnEvaluation EvaluateTurns(const TurnProblem& problem,
+                             const Eigen::Matrix3d& m_eff,
+                             double scale) {
+  TurnEvaluation e;
+  e.jacobian.resize(static_cast<Eigen::Index>(2 * problem.turns.size()), 9);
   for (std::size_t k = 0; k < problem.turns.size(); ++k) {
     const TurnData& t = problem.turns[k];
+    const double sigma = t.Sigma(scale);
+    Eigen::Vector2d r;
     Eigen::Matrix<double, 2, 9> jk;
-    internal::TurnResidual(t, m_eff, nullptr, &jk);
-    j.middleRows(static_cast<Eigen::Index>(2 * k), 2) = jk * scale / t.Sigma(scale);
+    e.rotations.push_back(internal::TurnResidual(t, m_eff, &r, &jk));
+    e.tilts_rad.push_back(internal::TurnTilt(t, e.rotations.back()));
+    e.chi2 += (r / sigma).squaredNorm();
+    e.jacobian.middleRows(static_cast<Eigen::Index>(2 * k), 2) = jk * scale / sigma;
   }
-  return j;
+  return e;
 }
 
 double Rms(const std::vector<double>& v) {
@@ -161,22 +185,154 @@ bool Plausible(const Eigen::Matrix3d& m) {
   return true;
 }
 
+// The Moore-Penrose inverse of the information (the covariance of the
+// entries it determines; directions it does not determine get none).
+Eigen::Matrix<double, 9, 9> PseudoInverse(
+    const Eigen::Matrix<double, 9, 9>& information) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> eig(information);
+  const Eigen::Matrix<double, 9, 1>& values = eig.eigenvalues();
+  const double floor = 1e-14 * values.cwiseAbs().maxCoeff();
+  Eigen::Matrix<double, 9, 1> inverse = Eigen::Matrix<double, 9, 1>::Zero();
+  for (int i = 0; i < 9; ++i) {
+    if (values[i] > floor) inverse[i] = 1.0 / values[i];
+  }
+  return eig.eigenvectors() * inverse.asDiagonal() * eig.eigenvectors().transpose();
+}
+
 double ResolveScale(const Recording& recording,
                     const GyroOptions& options,
-                    const TurnProblem& problem,
-                    bool* found) {
-  *found = false;
+                    const TurnProblem& problem) {
   if (options.radps_per_unit > 0.0) return options.radps_per_unit;
   if (const auto fixed = FixedRadpsPerUnit(recording.gyro_units)) return *fixed;
   const double guess = GuessScale(problem);
   if (!(guess > 0.0)) {
-    throw Error(fmt::format(
-        "{}: no turn between the static positions tilts gravity by more than 20 degrees, "
-        "so the scale of the gyroscope's raw counts cannot be found",
-        recording.source));
+    throw Error(ErrorKind::kSession,
+                fmt::format("{}: no turn between the static positions tilts gravity by "
+                            "more than 20 degrees, so the scale of the gyroscope's raw "
+                            "counts cannot be found",
+                            recording.source),
+                Advice{{Setting{Option::kLogGyroUnits, ""}}, Stage::kNone, ""});
   }
-  *found = true;
   return FitScale(problem, guess, options.max_iterations);
+}
+
+internal::TurnProblem BuildProblem(const Recording& recording,
+                                   std::span<const StaticInterval> intervals,
+                                   const Calibration& accel,
+                                   const GyroOptions& options,
+                                   double carry_radps_per_unit) {
+  return internal::BuildTurnProblem(recording,
+                                    intervals,
+                                    accel,
+                                    options.direction_window_s,
+                                    options.g_sensitivity,
+                                    options.g_sensitivity_min_f,
+                                    carry_radps_per_unit);
+}
+
+// The nominal scale that carries the directions to the turns' ends: for raw
+// counts found first from a problem without that carrying.
+double CarryScale(const Recording& recording,
+                  std::span<const StaticInterval> intervals,
+                  const Calibration& accel,
+                  const GyroOptions& options) {
+  if (options.radps_per_unit > 0.0) return options.radps_per_unit;
+  if (const auto fixed = FixedRadpsPerUnit(recording.gyro_units)) return *fixed;
+  const TurnProblem first = BuildProblem(recording, intervals, accel, options, 0.0);
+  constexpr std::size_t kMinTurnsForScale = 5;
+  if (first.turns.size() < kMinTurnsForScale) return 0.0;
+  return ResolveScale(recording, options, first);
+}
+
+std::vector<GyroTurn> DescribeTurns(const TurnProblem& problem) {
+  std::vector<GyroTurn> turns;
+  for (const TurnData& t : problem.turns) {
+    GyroTurn turn;
+    turn.from_position = t.from_position;
+    turn.begin = t.begin;
+    turn.end = t.end;
+    turn.start_s = t.start_s;
+    turn.end_s = t.end_s;
+    turns.push_back(turn);
+  }
+  return turns;
+}
+
+GyroFinding TooFewTurns(std::size_t turns) {
+  GyroFinding few;
+  few.kind = GyroFindingKind::kTooFewTurns;
+  few.value = static_cast<double>(turns);
+  few.limit = static_cast<double>(kMinTurns);
+  few.turn_axes = {true, true, true};
+  for (int j = 0; j < 9; ++j) few.parameters.push_back(j);
+  return few;
+}
+
+// The bias at every position, its mean and the mean's scatter, and G.
+void FillBias(const TurnProblem& problem, double scale, GyroCalibration* c) {
+  for (const auto& b : problem.bias_raw) {
+    c->position_bias.push_back({b.t_s, b.bias_radps * scale});
+  }
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& b : c->position_bias) mean += b.bias_radps;
+  const double n = static_cast<double>(c->position_bias.size());
+  mean /= n;
+  Eigen::Vector3d spread = Eigen::Vector3d::Zero();
+  for (const auto& b : c->position_bias) spread += (b.bias_radps - mean).cwiseAbs2();
+  c->bias_radps =
+      problem.g_sensitivity_used ? (problem.bias_without_g_raw * scale).eval() : mean;
+  if (problem.g_sensitivity_used) {
+    c->g_sensitivity_radps_per_mps2 = problem.g_sensitivity_raw_per_mps2 * scale;
+  }
+  c->bias_std_radps = (spread / std::max(n - 1.0, 1.0) / n).cwiseSqrt();
+}
+
+// Residuals, covariance, findings and summary at the solution `m_raw`.
+void Finish(const TurnProblem& problem,
+            const Eigen::Matrix3d& m_raw,
+            double scale,
+            const GyroOptions& options,
+            const ceres::Solver::Summary& summary,
+            GyroResult* result) {
+  GyroCalibration& c = result->calibration;
+  c.m = m_raw / scale;
+  const TurnEvaluation after = EvaluateTurns(problem, m_raw, scale);
+  std::vector<double> before;
+  for (std::size_t k = 0; k < problem.turns.size(); ++k) {
+    GyroTurn& turn = result->turns[k];
+    turn.residual_after_rad = after.tilts_rad[k];
+    const Eigen::AngleAxisd aa(after.rotations[k]);
+    turn.angle_rad = aa.angle();
+    turn.axis = aa.axis();
+    before.push_back(turn.residual_before_rad);
+  }
+  const double dof = 2.0 * static_cast<double>(problem.turns.size()) - 9.0;
+  result->covariance_scale = std::max(1.0, (kPriorDof + after.chi2) / (kPriorDof + dof));
+  result->information = after.jacobian.transpose() * after.jacobian;
+  result->findings = internal::AnalyseGyroObservability(after.jacobian,
+                                                        result->covariance_scale,
+                                                        options.poorly_determined_std,
+                                                        &result->singular_values);
+  c.m_covariance = result->covariance_scale * PseudoInverse(result->information);
+  FillBias(problem, scale, &c);
+  result->g_sensitivity_f = problem.g_sensitivity_f;
+
+  GyroFitSummary fit;
+  fit.turns = static_cast<int>(problem.turns.size());
+  fit.residual_rms_before_rad = Rms(before);
+  fit.residual_rms_after_rad = Rms(after.tilts_rad);
+  fit.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  fit.variance_factor = dof > 0 ? after.chi2 / dof : 1.0;
+  fit.noise_std_radps = problem.noise_std_raw * scale;
+  fit.sample_period_s = problem.sample_period_s;
+  const bool plausible = Plausible(c.m);
+  fit.converged = summary.termination_type == ceres::CONVERGENCE && plausible;
+  c.fit = fit;
+  result->status = fit.converged ? GyroStatus::kConverged : GyroStatus::kNoConvergence;
+  result->message = plausible
+                        ? summary.message
+                        : "the estimate left the plausible range (|scale - 1| < 0.5, "
+                          "|misalignment| < 0.5): the solver diverged";
 }
 
 }  // namespace
@@ -234,165 +390,51 @@ GyroResult CalibrateGyroscope(const Recording& recording,
                               const Calibration& accel,
                               const GyroOptions& options) {
   if (const std::string problem = options.Validate(); !problem.empty()) {
-    throw Error("gyroscope options: " + problem);
+    throw Error(ErrorKind::kOption, "gyroscope options: " + problem);
   }
-  // The nominal scale is needed to carry the directions to the turns' ends:
-  // for raw counts it is found first from a problem without that carrying.
-  double carry_scale = options.radps_per_unit;
-  if (!(carry_scale > 0.0)) {
-    if (const auto fixed = FixedRadpsPerUnit(recording.gyro_units)) carry_scale = *fixed;
-  }
-  if (!(carry_scale > 0.0)) {
-    const TurnProblem first = internal::BuildTurnProblem(recording,
-                                                         intervals,
-                                                         accel,
-                                                         options.direction_window_s,
-                                                         options.g_sensitivity,
-                                                         options.g_sensitivity_min_f,
-                                                         0.0);
-    bool unused = false;
-    if (first.turns.size() >= 5)
-      carry_scale = ResolveScale(recording, options, first, &unused);
-  }
-  const TurnProblem problem = internal::BuildTurnProblem(recording,
-                                                         intervals,
-                                                         accel,
-                                                         options.direction_window_s,
-                                                         options.g_sensitivity,
-                                                         options.g_sensitivity_min_f,
-                                                         carry_scale);
+  const double carry_scale = CarryScale(recording, intervals, accel, options);
+  const TurnProblem problem =
+      BuildProblem(recording, intervals, accel, options, carry_scale);
   GyroResult result;
-  GyroCalibration& c = result.calibration;
-  c.input_units = recording.gyro_units;
-
-  const std::size_t turns = problem.turns.size();
-  for (const TurnData& t : problem.turns) {
-    GyroTurn turn;
-    turn.from_position = t.from_position;
-    turn.begin = t.begin;
-    turn.end = t.end;
-    turn.start_s = t.start_s;
-    turn.end_s = t.end_s;
-    result.turns.push_back(turn);
-  }
-  if (2 * turns < 10) {
-    GyroFinding few;
-    few.kind = GyroFindingKind::kTooFewTurns;
-    few.value = static_cast<double>(turns);
-    few.limit = 5.0;
-    few.turn_axes = {true, true, true};
-    for (int j = 0; j < 9; ++j) few.parameters.push_back(j);
-    result.findings.push_back(few);
+  result.calibration.input_units = recording.gyro_units;
+  result.turns = DescribeTurns(problem);
+  if (problem.turns.size() < kMinTurns) {
+    result.findings.push_back(TooFewTurns(problem.turns.size()));
     result.status = GyroStatus::kUndetermined;
     return result;
   }
+  // For raw counts the scale fitted for the carrying is the nominal scale:
+  // fitted again on the carried directions it moves by 1e-5 of itself, which
+  // M's diagonal (relative to it) absorbs, at twice the cost of the solve.
+  const double scale =
+      carry_scale > 0.0 ? carry_scale : ResolveScale(recording, options, problem);
+  result.calibration.radps_per_unit = scale;
 
-  bool scale_found = false;
-  const double scale = ResolveScale(recording, options, problem, &scale_found);
-  c.radps_per_unit = scale;
-  double m_eff[9];
-  Eigen::Map<RowMajor3> m_start(m_eff);
-  m_start = scale * Eigen::Matrix3d::Identity();
-
-  // Before: nominal scale and per-position bias.
-  for (std::size_t k = 0; k < turns; ++k) {
-    const Eigen::Matrix3d r = internal::TurnResidual(
-        problem.turns[k], Eigen::Map<RowMajor3>(m_eff), nullptr, nullptr);
-    result.turns[k].residual_before_rad = internal::TurnTilt(problem.turns[k], r);
+  // Before: nominal scale and per-position bias. The observability is asked
+  // before solving: a solver let loose on an undetermined problem wanders off.
+  Eigen::Matrix3d m_start = scale * Eigen::Matrix3d::Identity();
+  const TurnEvaluation before = EvaluateTurns(problem, m_start, scale);
+  for (std::size_t k = 0; k < problem.turns.size(); ++k) {
+    result.turns[k].residual_before_rad = before.tilts_rad[k];
     result.turns[k].sigma_rad = problem.turns[k].Sigma(scale);
   }
-  // Asked before solving: a solver let loose on an undetermined problem
-  // wanders off.
   Eigen::Matrix<double, 9, 1> singular;
   result.findings = internal::AnalyseGyroObservability(
-      WhitenedJacobian(problem, Eigen::Map<RowMajor3>(m_eff), scale),
-      1.0,
-      options.poorly_determined_std,
-      &singular);
+      before.jacobian, 1.0, options.poorly_determined_std, &singular);
   for (const GyroFinding& f : result.findings) {
     if (f.kind == GyroFindingKind::kUndetermined) {
       result.status = GyroStatus::kUndetermined;
       return result;
     }
   }
-  result.findings.clear();
 
+  RowMajor3 m_eff = m_start;
   ceres::Problem p;
   for (const TurnData& t : problem.turns) {
-    p.AddResidualBlock(new TurnCost(t, t.Sigma(scale)), nullptr, m_eff);
+    p.AddResidualBlock(new TurnCost(t, t.Sigma(scale)), nullptr, m_eff.data());
   }
   const ceres::Solver::Summary summary = RunSolver(p, options.max_iterations);
-  const Eigen::Matrix3d m_raw = Eigen::Map<RowMajor3>(m_eff);
-  c.m = m_raw / scale;
-
-  std::vector<double> before;
-  std::vector<double> after;
-  double chi2 = 0.0;
-  for (std::size_t k = 0; k < turns; ++k) {
-    const TurnData& t = problem.turns[k];
-    Eigen::Vector2d r;
-    const Eigen::Matrix3d rotation = internal::TurnResidual(t, m_raw, &r, nullptr);
-    chi2 += (r / t.Sigma(scale)).squaredNorm();
-    GyroTurn& turn = result.turns[k];
-    turn.residual_after_rad = internal::TurnTilt(t, rotation);
-    const Eigen::AngleAxisd aa(rotation);
-    turn.angle_rad = aa.angle();
-    turn.axis = aa.axis();
-    before.push_back(turn.residual_before_rad);
-    after.push_back(turn.residual_after_rad);
-  }
-  const double dof = 2.0 * static_cast<double>(turns) - 9.0;
-  result.covariance_scale = std::max(1.0, (kPriorDof + chi2) / (kPriorDof + dof));
-
-  const Eigen::MatrixXd j = WhitenedJacobian(problem, m_raw, scale);
-  result.information = j.transpose() * j;
-  result.findings = internal::AnalyseGyroObservability(
-      j, result.covariance_scale, options.poorly_determined_std, &result.singular_values);
-
-  ceres::Covariance::Options cov_options;
-  cov_options.algorithm_type = ceres::DENSE_SVD;
-  cov_options.null_space_rank = -1;
-  ceres::Covariance covariance(cov_options);
-  const std::vector<const double*> blocks = {m_eff};
-  Eigen::Matrix<double, 9, 9, Eigen::RowMajor> cov = Eigen::Matrix<double, 9, 9>::Zero();
-  if (covariance.Compute(blocks, &p))
-    covariance.GetCovarianceBlock(m_eff, m_eff, cov.data());
-  c.m_covariance = result.covariance_scale * cov / (scale * scale);
-
-  for (const auto& b : problem.bias_raw) {
-    c.position_bias.push_back({b.t_s, b.bias_radps * scale});
-  }
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& b : c.position_bias) mean += b.bias_radps;
-  mean /= static_cast<double>(c.position_bias.size());
-  Eigen::Vector3d spread = Eigen::Vector3d::Zero();
-  for (const auto& b : c.position_bias) spread += (b.bias_radps - mean).cwiseAbs2();
-  const double n = static_cast<double>(c.position_bias.size());
-  c.bias_radps =
-      problem.g_sensitivity_used ? (problem.bias_without_g_raw * scale).eval() : mean;
-  if (problem.g_sensitivity_used) {
-    c.g_sensitivity_radps_per_mps2 = problem.g_sensitivity_raw_per_mps2 * scale;
-  }
-  result.g_sensitivity_f = problem.g_sensitivity_f;
-  c.bias_std_radps = (spread / std::max(n - 1.0, 1.0) / n).cwiseSqrt();
-
-  GyroFitSummary fit;
-  fit.turns = static_cast<int>(turns);
-  fit.residual_rms_before_rad = Rms(before);
-  fit.residual_rms_after_rad = Rms(after);
-  fit.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  fit.variance_factor = dof > 0 ? chi2 / dof : 1.0;
-  fit.noise_std_radps = problem.noise_std_raw * scale;
-  fit.sample_period_s = problem.sample_period_s;
-  const bool converged = summary.termination_type == ceres::CONVERGENCE && Plausible(c.m);
-  fit.converged = converged;
-  c.fit = fit;
-  result.status = converged ? GyroStatus::kConverged : GyroStatus::kNoConvergence;
-  result.message = Plausible(c.m)
-                       ? summary.message
-                       : "the estimate left the plausible range (|scale - 1| < 0.5, "
-                         "|misalignment| < 0.5): the solver diverged";
-  (void)scale_found;
+  Finish(problem, m_eff, scale, options, summary, &result);
   return result;
 }
 
@@ -409,12 +451,13 @@ Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const Recording& recording,
       GyroOptions().g_sensitivity_min_f,
       truth.radps_per_unit);
   const double scale = truth.radps_per_unit;
-  const Eigen::MatrixXd j = WhitenedJacobian(problem, truth.m * scale, scale);
+  const Eigen::MatrixXd j = EvaluateTurns(problem, truth.m * scale, scale).jacobian;
   const Eigen::MatrixXd information = j.transpose() * j;
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(information);
   const Eigen::VectorXd d = ldlt.vectorD().cwiseAbs();
   if (ldlt.info() != Eigen::Success || d.minCoeff() <= 1e-12 * d.maxCoeff()) {
-    throw Error(fmt::format("gyroscope Cramér-Rao bound: the {} turns do not determine M",
+    throw Error(ErrorKind::kSession,
+                fmt::format("gyroscope Cramér-Rao bound: the {} turns do not determine M",
                             problem.turns.size()));
   }
   return ldlt.solve(Eigen::MatrixXd::Identity(9, 9));
@@ -425,10 +468,12 @@ Eigen::Matrix3d IntegrateRotation(const Recording& recording,
                                   std::size_t end,
                                   const GyroCalibration& gyro) {
   if (recording.gyro_radps.size() != recording.size() || recording.empty()) {
-    throw Error(fmt::format("{}: the log has no gyroscope readings", recording.source));
+    throw Error(ErrorKind::kColumns,
+                fmt::format("{}: the log has no gyroscope readings", recording.source));
   }
   if (begin > end || end >= recording.size()) {
-    throw Error(fmt::format("{}: samples {}-{} are outside the recording ({} samples)",
+    throw Error(ErrorKind::kInput,
+                fmt::format("{}: samples {}-{} are outside the recording ({} samples)",
                             recording.source,
                             begin,
                             end,

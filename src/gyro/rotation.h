@@ -66,6 +66,14 @@ Eigen::Matrix3d RotationOverTurn(const Eigen::Matrix3d& m,
                                  std::span<const TurnStep> steps,
                                  Eigen::Matrix<double, 3, 9>* jacobian);
 
+/// The same rotation and the derivative of its right perturbation δθ along
+/// one direction of M (δM = `direction`): 3 values per sample where the
+/// full Jacobian needs 27, for a fit of fewer parameters (a common scale).
+Eigen::Matrix3d RotationOverTurnAlong(const Eigen::Matrix3d& m,
+                                      std::span<const TurnStep> steps,
+                                      const Eigen::Matrix3d& direction,
+                                      Eigen::Vector3d* derivative);
+
 /// exp([φ]×) (Rodrigues), and the right Jacobian of SO(3) at φ.
 Eigen::Matrix3d ExpSO3(const Eigen::Vector3d& phi);
 Eigen::Matrix3d RightJacobianSO3(const Eigen::Vector3d& phi);

@@ -98,12 +98,143 @@ Eigen::Vector3d EdgeDirection(const Recording& rec,
   return sum.normalized();
 }
 
+// Each tangent component of a whole position's mean direction: the
+// accelerometer's noise of the mean over g.
+double WholePositionVariance(const StaticInterval& in, const Calibration& accel) {
+  const Eigen::Vector3d std_mps2 = in.std * accel.mps2_per_unit;
+  const double n = static_cast<double>(std::max<std::size_t>(in.samples(), 1));
+  return std_mps2.squaredNorm() / 3.0 / n / (accel.gravity_mps2 * accel.gravity_mps2);
+}
+
 }  // namespace
 
 double TurnData::Sigma(double radps_per_unit) const {
   return std::sqrt(direction_variance_rad2 +
                    radps_per_unit * radps_per_unit * gyro_variance_raw2s2);
 }
+
+namespace {
+
+void CheckIntervals(const Recording& rec, std::span<const StaticInterval> intervals) {
+  if (rec.gyro_radps.size() != rec.size() || rec.empty()) {
+    throw Error(ErrorKind::kColumns,
+                fmt::format("{}: the log has no gyroscope readings", rec.source));
+  }
+  if (intervals.size() < 2) {
+    throw Error(ErrorKind::kSession,
+                fmt::format("{}: {} static position(s) give no turn for the gyroscope",
+                            rec.source,
+                            intervals.size()));
+  }
+  for (std::size_t k = 0; k < intervals.size(); ++k) {
+    const StaticInterval& in = intervals[k];
+    if (in.begin >= in.end || in.end > rec.size() ||
+        (k > 0 && in.begin < intervals[k - 1].end)) {
+      throw Error(ErrorKind::kInput,
+                  fmt::format("{}: static position {} lies outside the recording or "
+                              "overlaps the one before",
+                              rec.source,
+                              k + 1));
+    }
+  }
+}
+
+// g-sensitivity: the bias at rest regressed on the specific force (and
+// time, so that a drift is not taken for it), b_j = c + G f_j + d t_j. Only
+// the part of the bias that is not G f is interpolated across a turn; G f
+// follows the specific force sample by sample. Removes G f from `rest_bias`
+// when the model keeps it.
+void FitGSensitivity(std::span<const StaticInterval> intervals,
+                     const Calibration& accel,
+                     const std::vector<PositionGyro>& gyro,
+                     GSensitivity mode,
+                     double min_f,
+                     TurnProblem* problem,
+                     std::vector<Eigen::Vector3d>* rest_bias) {
+  constexpr std::size_t kMinPositionsForG = 15;
+  if (mode == GSensitivity::kOff || intervals.size() < kMinPositionsForG) return;
+  const auto n = static_cast<Eigen::Index>(intervals.size());
+  Eigen::MatrixXd x(n, 5);
+  Eigen::MatrixXd y(n, 3);
+  const double t0 = gyro.front().centre_s;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    x.row(j) << 1.0, accel.Correct(intervals[k].mean).transpose(), gyro[k].centre_s - t0;
+    y.row(j) = gyro[k].mean.transpose();
+  }
+  const Eigen::MatrixXd coef = x.colPivHouseholderQr().solve(y);  // 5 × 3
+  Eigen::MatrixXd x0(n, 2);
+  x0 << x.col(0), x.col(4);
+  const Eigen::MatrixXd coef0 = x0.colPivHouseholderQr().solve(y);
+  const double rss1 = (y - x * coef).squaredNorm();
+  const double rss0 = (y - x0 * coef0).squaredNorm();
+  // 9 more parameters (3 per axis), 3·(n − 5) residual degrees of freedom.
+  const double dof = 3.0 * static_cast<double>(n - 5);
+  problem->g_sensitivity_f = rss1 > 0.0 ? ((rss0 - rss1) / 9.0) / (rss1 / dof) : 0.0;
+  if (mode != GSensitivity::kOn && problem->g_sensitivity_f <= min_f) return;
+  problem->g_sensitivity_raw_per_mps2 = coef.middleRows(1, 3).transpose();
+  problem->g_sensitivity_used = true;
+  for (std::size_t k = 0; k < gyro.size(); ++k) {
+    (*rest_bias)[k] -=
+        problem->g_sensitivity_raw_per_mps2 * accel.Correct(intervals[k].mean);
+  }
+}
+
+// The bias-free increments of turn `t` (its begin/end set), the bias
+// interpolated between the two positions' rest biases `bias_a`, `bias_b`
+// (plus G f sample by sample), and the gyroscope's part of its variance.
+void FillIncrements(const Recording& rec,
+                    const Calibration& accel,
+                    const PositionGyro& a,
+                    const PositionGyro& b,
+                    const Eigen::Vector3d& bias_a,
+                    const Eigen::Vector3d& bias_b,
+                    const TurnProblem& problem,
+                    TurnData* t) {
+  const double span_s = std::max(b.centre_s - a.centre_s, 1e-9);
+  const Eigen::Matrix3d& g_sens = problem.g_sensitivity_raw_per_mps2;
+  const bool with_g = g_sens.any();
+  auto bias_at = [&](std::size_t i, double* lambda) {
+    *lambda = std::clamp((rec.time_s[i] - a.centre_s) / span_s, 0.0, 1.0);
+    Eigen::Vector3d bias = (1.0 - *lambda) * bias_a + *lambda * bias_b;
+    if (with_g) bias += g_sens * accel.Correct(rec.accel[i]);
+    return bias;
+  };
+  t->steps.reserve(t->end - t->begin);
+  double lambda_sum = 0.0;
+  double l0 = 0.0;
+  Eigen::Vector3d w0 = rec.gyro_radps[t->begin] - bias_at(t->begin, &l0);
+  for (std::size_t i = t->begin; i < t->end; ++i) {
+    double l1 = 0.0;
+    const Eigen::Vector3d w1 = rec.gyro_radps[i + 1] - bias_at(i + 1, &l1);
+    const double dt = rec.time_s[i + 1] - rec.time_s[i];
+    t->steps.push_back({w0 * dt, w1 * dt});
+    lambda_sum += 0.5 * (l0 + l1);
+    w0 = w1;
+    l0 = l1;
+  }
+  const double duration = t->end_s - t->start_s;
+  const double lambda = t->steps.empty() ? 0.5 : lambda_sum / t->steps.size();
+  // White noise integrated over the turn (angle random walk), and the
+  // error of the two measured biases carried through the interpolation.
+  const double var_sample = problem.noise_std_raw * problem.noise_std_raw;
+  const double arw = var_sample * problem.sample_period_s * duration;
+  const double bias = duration * duration *
+                      ((1.0 - lambda) * (1.0 - lambda) * var_sample / a.samples +
+                       lambda * lambda * var_sample / b.samples);
+  t->gyro_variance_raw2s2 = arw + bias;
+}
+
+double MedianSamplePeriod(const Recording& rec) {
+  std::vector<double> periods;
+  for (std::size_t i = 1; i < rec.size();
+       i += std::max<std::size_t>(1, rec.size() / 1000)) {
+    periods.push_back(rec.time_s[i] - rec.time_s[i - 1]);
+  }
+  return Median(periods);
+}
+
+}  // namespace
 
 TurnProblem BuildTurnProblem(const Recording& rec,
                              std::span<const StaticInterval> intervals,
@@ -112,94 +243,25 @@ TurnProblem BuildTurnProblem(const Recording& rec,
                              GSensitivity g_sensitivity,
                              double min_f,
                              double carry_radps_per_unit) {
-  if (rec.gyro_radps.size() != rec.size() || rec.empty()) {
-    throw Error(fmt::format("{}: the log has no gyroscope readings", rec.source));
-  }
-  if (intervals.size() < 2) {
-    throw Error(fmt::format("{}: {} static position(s) give no turn for the gyroscope",
-                            rec.source,
-                            intervals.size()));
-  }
-  for (std::size_t k = 0; k < intervals.size(); ++k) {
-    const StaticInterval& in = intervals[k];
-    if (in.begin >= in.end || in.end > rec.size() ||
-        (k > 0 && in.begin < intervals[k - 1].end)) {
-      throw Error(
-          fmt::format("{}: static position {} lies outside the recording or "
-                      "overlaps the one before",
-                      rec.source,
-                      k + 1));
-    }
-  }
-
+  CheckIntervals(rec, intervals);
   TurnProblem problem;
   std::vector<PositionGyro> gyro;
-  std::vector<Eigen::Vector3d> directions;
-  std::vector<double> direction_variance;
   std::vector<double> stds;
   for (const StaticInterval& in : intervals) {
     gyro.push_back(GyroAt(rec, in));
     stds.push_back(gyro.back().std);
     problem.bias_raw.push_back({gyro.back().centre_s, gyro.back().mean});
-    directions.push_back(accel.Correct(in.mean).normalized());
-    // Each tangent component of the mean direction: the accelerometer's
-    // noise of the mean over g.
-    const Eigen::Vector3d std_mps2 = in.std * accel.mps2_per_unit;
-    const double n = static_cast<double>(std::max<std::size_t>(in.samples(), 1));
-    direction_variance.push_back(std_mps2.squaredNorm() / 3.0 / n /
-                                 (accel.gravity_mps2 * accel.gravity_mps2));
   }
   // The typical scatter at rest is the white noise; a position far quieter
   // is quantisation of a sensor that does not move, not a better gyroscope.
   problem.noise_std_raw = Median(stds);
-  std::vector<double> periods;
-  for (std::size_t i = 1; i < rec.size();
-       i += std::max<std::size_t>(1, rec.size() / 1000)) {
-    periods.push_back(rec.time_s[i] - rec.time_s[i - 1]);
-  }
-  problem.sample_period_s = Median(periods);
-
-  // g-sensitivity: the bias at rest regressed on the specific force (and
-  // time, so that a drift is not taken for it), b_j = c + G f_j + d t_j. Only
-  // the part of the bias that is not G f is interpolated across a turn; G f
-  // follows the specific force sample by sample.
-  Eigen::Matrix3d g_sens = Eigen::Matrix3d::Zero();
+  problem.sample_period_s = MedianSamplePeriod(rec);
   std::vector<Eigen::Vector3d> rest_bias;
   for (const PositionGyro& p : gyro) rest_bias.push_back(p.mean);
-  constexpr std::size_t kMinPositionsForG = 15;
-  if (g_sensitivity != GSensitivity::kOff && intervals.size() >= kMinPositionsForG) {
-    const auto n = static_cast<Eigen::Index>(intervals.size());
-    Eigen::MatrixXd x(n, 5);
-    Eigen::MatrixXd y(n, 3);
-    const double t0 = gyro.front().centre_s;
-    for (Eigen::Index j = 0; j < n; ++j) {
-      const auto k = static_cast<std::size_t>(j);
-      x.row(j) << 1.0, accel.Correct(intervals[k].mean).transpose(),
-          gyro[k].centre_s - t0;
-      y.row(j) = gyro[k].mean.transpose();
-    }
-    const Eigen::MatrixXd coef = x.colPivHouseholderQr().solve(y);  // 5 × 3
-    Eigen::MatrixXd x0(n, 2);
-    x0 << x.col(0), x.col(4);
-    const Eigen::MatrixXd coef0 = x0.colPivHouseholderQr().solve(y);
-    const double rss1 = (y - x * coef).squaredNorm();
-    const double rss0 = (y - x0 * coef0).squaredNorm();
-    // 9 more parameters (3 per axis), 3·(n − 5) residual degrees of freedom.
-    const double dof = 3.0 * static_cast<double>(n - 5);
-    problem.g_sensitivity_f = rss1 > 0.0 ? ((rss0 - rss1) / 9.0) / (rss1 / dof) : 0.0;
-    if (g_sensitivity == GSensitivity::kOn || problem.g_sensitivity_f > min_f) {
-      g_sens = coef.middleRows(1, 3).transpose();
-      problem.g_sensitivity_used = true;
-      for (std::size_t k = 0; k < gyro.size(); ++k) {
-        rest_bias[k] -= g_sens * accel.Correct(intervals[k].mean);
-      }
-    }
-  }
+  FitGSensitivity(intervals, accel, gyro, g_sensitivity, min_f, &problem, &rest_bias);
   for (const auto& b : rest_bias) problem.bias_without_g_raw += b;
   problem.bias_without_g_raw /= static_cast<double>(rest_bias.size());
-  problem.g_sensitivity_raw_per_mps2 = g_sens;
 
-  const double var_sample = problem.noise_std_raw * problem.noise_std_raw;
   for (std::size_t k = 0; k + 1 < intervals.size(); ++k) {
     TurnData t;
     t.from_position = k;
@@ -225,48 +287,16 @@ TurnProblem BuildTurnProblem(const Recording& rec,
                              carry_radps_per_unit,
                              &t.direction_variance_rad2);
     } else {
-      t.u_from = directions[k];
-      t.u_to = directions[k + 1];
-      t.direction_variance_rad2 = direction_variance[k] + direction_variance[k + 1];
+      t.u_from = accel.Correct(intervals[k].mean).normalized();
+      t.u_to = accel.Correct(intervals[k + 1].mean).normalized();
+      t.direction_variance_rad2 = WholePositionVariance(intervals[k], accel) +
+                                  WholePositionVariance(intervals[k + 1], accel);
     }
-    const PositionGyro& a = gyro[k];
-    const PositionGyro& b = gyro[k + 1];
-    const double span_s = std::max(b.centre_s - a.centre_s, 1e-9);
-    const Eigen::Vector3d& bias_a = rest_bias[k];
-    const Eigen::Vector3d& bias_b = rest_bias[k + 1];
-    const bool with_g = g_sens.any();
-    auto bias_at = [&](std::size_t i, double* lambda) {
-      *lambda = std::clamp((rec.time_s[i] - a.centre_s) / span_s, 0.0, 1.0);
-      Eigen::Vector3d bias = (1.0 - *lambda) * bias_a + *lambda * bias_b;
-      if (with_g) bias += g_sens * accel.Correct(rec.accel[i]);
-      return bias;
-    };
-    t.steps.reserve(t.end - t.begin);
-    double lambda_sum = 0.0;
-    double l0 = 0.0;
-    Eigen::Vector3d w0 = rec.gyro_radps[t.begin] - bias_at(t.begin, &l0);
-    for (std::size_t i = t.begin; i < t.end; ++i) {
-      double l1 = 0.0;
-      const Eigen::Vector3d w1 = rec.gyro_radps[i + 1] - bias_at(i + 1, &l1);
-      const double dt = rec.time_s[i + 1] - rec.time_s[i];
-      t.steps.push_back({w0 * dt, w1 * dt});
-      lambda_sum += 0.5 * (l0 + l1);
-      w0 = w1;
-      l0 = l1;
-    }
+    FillIncrements(
+        rec, accel, gyro[k], gyro[k + 1], rest_bias[k], rest_bias[k + 1], problem, &t);
     const Eigen::Vector3d e1 = t.u_to.unitOrthogonal();
     t.basis_to.col(0) = e1;
     t.basis_to.col(1) = t.u_to.cross(e1);
-
-    const double duration = t.end_s - t.start_s;
-    const double lambda = t.steps.empty() ? 0.5 : lambda_sum / t.steps.size();
-    // White noise integrated over the turn (angle random walk), and the
-    // error of the two measured biases carried through the interpolation.
-    const double arw = var_sample * problem.sample_period_s * duration;
-    const double bias = duration * duration *
-                        ((1.0 - lambda) * (1.0 - lambda) * var_sample / a.samples +
-                         lambda * lambda * var_sample / b.samples);
-    t.gyro_variance_raw2s2 = arw + bias;
     problem.turns.push_back(std::move(t));
   }
   return problem;
@@ -283,6 +313,23 @@ Eigen::Matrix3d TurnResidual(const TurnData& turn,
   if (residual != nullptr) *residual = turn.basis_to.transpose() * carried;
   // R' = R exp([δθ]×) carries u to exp(−[δθ]×) Rᵀu ≈ Rᵀu + [Rᵀu]× δθ.
   if (jacobian != nullptr) *jacobian = turn.basis_to.transpose() * Hat(carried) * d_theta;
+  return r;
+}
+
+Eigen::Matrix3d TurnResidualAlong(const TurnData& turn,
+                                  const Eigen::Matrix3d& m,
+                                  const Eigen::Matrix3d& direction,
+                                  Eigen::Vector2d* residual,
+                                  Eigen::Vector2d* derivative) {
+  Eigen::Vector3d d_theta = Eigen::Vector3d::Zero();
+  const Eigen::Matrix3d r =
+      derivative != nullptr ? RotationOverTurnAlong(m, turn.steps, direction, &d_theta)
+                            : RotationOverTurn(m, turn.steps, nullptr);
+  const Eigen::Vector3d carried = r.transpose() * turn.u_from;
+  if (residual != nullptr) *residual = turn.basis_to.transpose() * carried;
+  if (derivative != nullptr) {
+    *derivative = turn.basis_to.transpose() * Hat(carried) * d_theta;
+  }
   return r;
 }
 

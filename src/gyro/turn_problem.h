@@ -82,6 +82,14 @@ Eigen::Matrix3d TurnResidual(const TurnData& turn,
                              Eigen::Vector2d* residual,
                              Eigen::Matrix<double, 2, 9>* jacobian);
 
+/// The same residual and, when `derivative` is not null, its derivative
+/// along one direction of M (δM = `direction`): for a fit of a common scale.
+Eigen::Matrix3d TurnResidualAlong(const TurnData& turn,
+                                  const Eigen::Matrix3d& m,
+                                  const Eigen::Matrix3d& direction,
+                                  Eigen::Vector2d* residual,
+                                  Eigen::Vector2d* derivative);
+
 /// Angle (rad) between the carried direction Rᵀ u_from and u_to.
 double TurnTilt(const TurnData& turn, const Eigen::Matrix3d& rotation);
 

@@ -63,6 +63,7 @@ svg .band-excluded { fill: #D55E00; fill-opacity: 0.18; stroke: #D55E00;
 svg .stripe { fill: #f4f4f4; }
 svg .bar { fill: #56B4E9; stroke: #1f4e79; stroke-width: 0.8; }
 svg .bar-dark { fill: #1f4e79; stroke: #1a1a1a; stroke-width: 0.8; }
+svg .bar-z { fill: #E69F00; stroke: #1a1a1a; stroke-width: 0.8; }
 svg .bar-excluded { fill: #ffffff; stroke: #D55E00; stroke-width: 1.2; stroke-dasharray: 3 2; }
 svg .disk { fill: #fbfbfb; stroke: #1a1a1a; stroke-width: 1.2; }
 svg .guide { fill: none; stroke: #bdbdbd; stroke-width: 0.8; stroke-dasharray: 3 3; }

@@ -29,6 +29,9 @@ std::string RenderReport(const ReportInputs& inputs) {
       HeaderSection(inputs, inputs.generated_at.empty() ? NowUtc() : inputs.generated_at);
   html += "<main>\n";
   if (inputs.calibration) html += CalibrationSection(*inputs.calibration);
+  if (inputs.calibration) {
+    html += GyroSection(*inputs.calibration, inputs.session ? &*inputs.session : nullptr);
+  }
   if (inputs.session) {
     html += SessionSection(*inputs.session,
                            inputs.calibration ? &*inputs.calibration : nullptr);

@@ -18,6 +18,12 @@ std::string HeaderSection(const ReportInputs& inputs, const std::string& generat
 /// cross-validation and warnings.
 std::string CalibrationSection(const Calibration& calibration);
 
+/// The gyroscope of an IMU calibration (empty without one): M ±1σ, the bias
+/// at every position; with the session's recording holding the gyroscope,
+/// the turn residuals before and after and the turn axes on the sphere
+/// (section_gyro.cc).
+std::string GyroSection(const Calibration& calibration, const ReportSession* session);
+
 /// The recording against time with its static intervals shaded. With a
 /// calibration whose positions lie in the recording, those are shaded and
 /// numbered as in the calibration section.

@@ -27,3 +27,11 @@ mpcal_cli_test(apply_unknown_out_gyro_units EXIT 2
   MATCH "--out-gyro-units: 'rpm' is not one of: rads, dps"
   ARGS apply ${MPCAL_TEST_DATA}/apply_calib.json ${MPCAL_TEST_DATA}/apply_log.csv -o out.csv
        --out-gyro-units rpm)
+# demo: the gyroscope of the simulated session beside the accelerometer,
+# against its truth and the Cramér-Rao bound of the turns.
+mpcal_cli_test(demo_gyroscope EXIT 0
+  MATCH "^RMS of \\(estimate - truth\\) / Cramér-Rao bound over the 9 entries of the gyroscope's M: (0|1)\\.[0-9]+"
+  ARGS demo --output-dir out)
+mpcal_cli_test(demo_gyroscope_turns EXIT 0
+  MATCH "^gyroscope: 26 turns between the positions; converged after [0-9]+ iterations"
+  ARGS demo --output-dir out)
