@@ -13,7 +13,7 @@ runs `mpcal noise --json` on each, and compares every axis with the truth:
   B  (bias instability)  where measured, within its interval or 25 % of the
                          truth.
 
-  noise_study.py MPCAL [--cases N] [--skip N] [--keep DIR]
+  noise_study.py MPCAL [--cases N] [--skip N] [--keep DIR [--keep-logs]]
 
 Exit status 0 when every bar is met (PASS), 1 otherwise.
 """
@@ -40,18 +40,20 @@ KEYS = {'accel': ('accelerometer', 'mps2_per_sqrt_hz', 'white_noise_mps2_per_rth
                  'bias_instability_radps')}
 
 
-def run_case(mpcal, work, hours, rate, seed, walk):
+def run_case(mpcal, work, hours, rate, seed, walk, keep_logs):
     out = os.path.join(work, 'h%g_r%g_s%d' % (hours, rate, seed))
-    subprocess.run([sys.executable, os.path.join(HERE, 'gen_still.py'), '--out', out,
-                    '--hours', str(hours), '--rate', str(rate), '--seed', str(seed)] +
-                   (WALK if walk else []), check=True, stdout=subprocess.DEVNULL)
+    if not (keep_logs and os.path.exists(os.path.join(out, 'still.csv'))):
+        subprocess.run([sys.executable, os.path.join(HERE, 'gen_still.py'), '--out', out,
+                        '--hours', str(hours), '--rate', str(rate), '--seed', str(seed)] +
+                       (WALK if walk else []), check=True, stdout=subprocess.DEVNULL)
     with open(os.path.join(out, 'truth.json')) as f:
         truth = json.load(f)
     subprocess.run([mpcal, 'noise', os.path.join(out, 'still.csv'), '--json',
                     os.path.join(out, 'noise.json')], check=True, stdout=subprocess.DEVNULL)
     with open(os.path.join(out, 'noise.json')) as f:
         result = json.load(f)
-    os.remove(os.path.join(out, 'still.csv'))  # 1 GB at 8 h and 400 Hz
+    if not keep_logs:
+        os.remove(os.path.join(out, 'still.csv'))  # 1 GB at 8 h and 400 Hz
     return truth, result
 
 
@@ -61,13 +63,16 @@ def main():
     ap.add_argument('--cases', type=int, default=len(CASES), help='first N of the cases')
     ap.add_argument('--skip', type=int, default=0, help='leave out the first N cases')
     ap.add_argument('--keep', help='keep the generated files in this directory')
+    ap.add_argument('--keep-logs', action='store_true',
+                    help='with --keep: keep each still.csv and reuse it when it is there '
+                         '(to rerun mpcal without generating again)')
     a = ap.parse_args()
     work = a.keep or tempfile.mkdtemp(prefix='mpcal_noise_study.')
     n_worst, k_in, k_measured, k_bound_ok, k_not, b_ok, b_measured, n_axes = 0.0, 0, 0, 0, 0, 0, 0, 0
     print('%-16s %-8s %9s %10s %s' % ('record', 'axis', 'N err %', 'K/truth', 'B/truth'))
     try:
         for hours, rate, seed, walk in CASES[a.skip:a.cases]:
-            truth, result = run_case(a.mpcal, work, hours, rate, seed, walk)
+            truth, result = run_case(a.mpcal, work, hours, rate, seed, walk, a.keep and a.keep_logs)
             for sensor, (name, tn, rn, tk, rk, tb, rb) in KEYS.items():
                 for i, axis in enumerate('xyz'):
                     ax = result[name]['axes'][axis]
