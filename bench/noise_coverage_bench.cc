@@ -129,9 +129,8 @@ int main(int argc, char** argv) {
   }
   const double cover =
       all.k_measured > 0 ? static_cast<double>(all.k_inside) / all.k_measured : 0.0;
-  fmt::print("N: worst error {:.2f} % over {} axes (bar: 3 %)\n",
-             100.0 * all.worst_n,
-             all.axes);
+  fmt::print(
+      "N: worst error {:.2f} % over {} axes (bar: 3 %)\n", 100.0 * all.worst_n, all.axes);
   fmt::print(
       "K: measured on {} axes, truth inside the interval on {} ({:.1f} %, bar 90 %; "
       "{} below it, {} above); not measured on {}, bound above the truth on {}\n",

@@ -13,6 +13,7 @@
 
 #include "mpcal/error.h"
 #include "mpcal/noise.h"
+#include "noise/noise_fit.h"
 
 namespace mpcal {
 namespace {
@@ -79,18 +80,6 @@ MPCAL_VECTOR_CLONES void StridedSecondDifferenceSquares(const double* theta,
   for (int j = 0; j < 3; ++j) out[j] += acc[j];
 }
 
-std::vector<std::int64_t> ClusterSizes(std::int64_t samples, const AllanOptions& o) {
-  const auto m_max = static_cast<std::int64_t>(std::floor(o.max_tau_fraction * samples));
-  std::vector<std::int64_t> ms;
-  for (int j = 0;; ++j) {
-    const auto m =
-        static_cast<std::int64_t>(std::llround(std::exp2(j / o.points_per_octave)));
-    if (m > m_max) break;
-    if (ms.empty() || m > ms.back()) ms.push_back(m);
-  }
-  return ms;
-}
-
 // Regularised lower incomplete gamma P(a, x) (series below a + 1, Lentz's
 // continued fraction above; Press et al., Numerical Recipes §6.2).
 double RegularisedGammaP(double a, double x) {
@@ -132,6 +121,22 @@ double NormalQuantile(double p) {
 }
 
 }  // namespace
+
+namespace internal {
+
+std::vector<std::int64_t> ClusterSizes(std::int64_t samples, const AllanOptions& o) {
+  const auto m_max = static_cast<std::int64_t>(std::floor(o.max_tau_fraction * samples));
+  std::vector<std::int64_t> ms;
+  for (int j = 0;; ++j) {
+    const auto m =
+        static_cast<std::int64_t>(std::llround(std::exp2(j / o.points_per_octave)));
+    if (m > m_max) break;
+    if (ms.empty() || m > ms.back()) ms.push_back(m);
+  }
+  return ms;
+}
+
+}  // namespace internal
 
 std::string_view ToString(NoiseTerm term) {
   switch (term) {
@@ -211,7 +216,7 @@ std::array<std::vector<AllanPoint>, 3> OverlappingAllan(const CumulativeSums3& s
     throw Error(fmt::format("{} samples are too few for an Allan deviation (at least 8)",
                             std::max<std::int64_t>(phase - 1, 0)));
   }
-  const std::vector<std::int64_t> ms = ClusterSizes(phase - 1, options);
+  const std::vector<std::int64_t> ms = internal::ClusterSizes(phase - 1, options);
   const double* theta = sums.theta().front().data();
   std::vector<std::array<long double, 3>> totals(ms.size(), {0.0L, 0.0L, 0.0L});
   std::vector<std::int64_t> strides(ms.size(), 1);
