@@ -144,8 +144,14 @@ int main(int argc, char** argv) {
   fmt::print("B: measured on {} axes, within its interval or 25 % on {}\n",
              all.b_measured,
              all.b_ok);
+  // Intervals and bounds are 95 % ones: a few misses are expected, so each
+  // bar is a rate (90 %), not all.
+  const auto rate = [](int ok, int n) {
+    return n > 0 ? static_cast<double>(ok) / n : 1.0;
+  };
   const bool ok = all.worst_n <= 0.03 && all.k_measured > 0 && cover >= 0.9 &&
-                  all.k_bound_ok == all.k_not && all.b_ok == all.b_measured;
+                  rate(all.k_bound_ok, all.k_not) >= 0.9 &&
+                  rate(all.b_ok, all.b_measured) >= 0.9;
   fmt::print("{}\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }

@@ -9,9 +9,9 @@ runs `mpcal noise --json` on each, and compares every axis with the truth:
   K  (random walk)       where measured, the truth inside the reported
                          interval in at least 90 % of the axes;
                          where not measured, the reported upper bound above
-                         the truth;
+                         the truth on at least 90 % (a 95 % bound);
   B  (bias instability)  where measured, within its interval or 25 % of the
-                         truth.
+                         truth on at least 90 %.
 
   noise_study.py MPCAL [--cases N] [--skip N] [--keep DIR [--keep-logs]]
 
@@ -33,9 +33,10 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 WALK = ['--accel-random-walk', '4e-5', '--gyro-random-walk', '2e-6']
 CASES = [(2, 100, 2, True), (3, 400, 3, True), (4, 200, 5, True), (2, 50, 1, False),
          (6, 100, 6, True), (4, 50, 4, False), (8, 100, 8, True), (8, 50, 7, False)]
-# --more: eight more at 50-100 Hz (cheaper to generate), for a coverage
-# figure from more axes.
-MORE = [(2, 50, 11, True), (3, 50, 12, True), (4, 50, 13, True), (6, 50, 14, True),
+# Eight more at 50-100 Hz (cheaper to generate): a coverage figure from
+# more axes (eight cases give about 20 measured random walks, too few to
+# tell 90 % from 95 %).
+CASES += [(2, 50, 11, True), (3, 50, 12, True), (4, 50, 13, True), (6, 50, 14, True),
         (8, 50, 15, True), (2, 100, 16, True), (4, 100, 17, True), (8, 50, 18, False)]
 KEYS = {'accel': ('accelerometer', 'mps2_per_sqrt_hz', 'white_noise_mps2_per_rthz',
                   'mps3_per_sqrt_hz', 'random_walk_mps3_per_rthz', 'mps2', 'bias_instability_mps2'),
@@ -67,7 +68,6 @@ def main():
     ap.add_argument('--cases', type=int, default=len(CASES), help='first N of the cases')
     ap.add_argument('--skip', type=int, default=0, help='leave out the first N cases')
     ap.add_argument('--keep', help='keep the generated files in this directory')
-    ap.add_argument('--more', action='store_true', help='add the eight MORE cases')
     ap.add_argument('--keep-logs', action='store_true',
                     help='with --keep: keep each still.csv and reuse it when it is there '
                          '(to rerun mpcal without generating again)')
@@ -76,7 +76,7 @@ def main():
     n_worst, k_in, k_measured, k_bound_ok, k_not, b_ok, b_measured, n_axes = 0.0, 0, 0, 0, 0, 0, 0, 0
     print('%-16s %-8s %9s %10s %s' % ('record', 'axis', 'N err %', 'K/truth', 'B/truth'))
     try:
-        for hours, rate, seed, walk in (CASES + (MORE if a.more else []))[a.skip:a.cases if not a.more else None]:
+        for hours, rate, seed, walk in CASES[a.skip:a.cases]:
             truth, result = run_case(a.mpcal, work, hours, rate, seed, walk, a.keep and a.keep_logs)
             for sensor, (name, tn, rn, tk, rk, tb, rb) in KEYS.items():
                 for i, axis in enumerate('xyz'):
@@ -116,8 +116,8 @@ def main():
           'not measured on %d, bound above the truth on %d' %
           (k_measured, n_axes, k_in, 100 * k_cover, k_not, k_bound_ok))
     print('B: measured on %d axes, within its interval or 25 %% on %d' % (b_measured, b_ok))
-    ok = n_worst <= 3.0 and k_measured > 0 and k_cover >= 0.9 and k_bound_ok == k_not and \
-        b_ok == b_measured
+    ok = n_worst <= 3.0 and k_measured > 0 and k_cover >= 0.9 and \
+        k_bound_ok >= 0.9 * k_not and b_ok >= 0.9 * b_measured
     print('PASS' if ok else 'FAIL')
     return 0 if ok else 1
 
