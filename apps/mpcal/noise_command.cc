@@ -107,7 +107,7 @@ void PrintFindings(const SensorNoise& s, bool gyro, const NoiseResult& r) {
   for (const NoiseTerm t :
        {NoiseTerm::kWhiteNoise, NoiseTerm::kBiasInstability, NoiseTerm::kRandomWalk}) {
     std::vector<std::string> not_seen, masked;
-    double needed = 0.0;
+    double needed = 0.0, needed_half = 0.0;
     for (int i = 0; i < 3; ++i) {
       const TermEstimate& e = s.axes[i].term(t);
       const std::string axis(1, static_cast<char>('x' + i));
@@ -115,6 +115,8 @@ void PrintFindings(const SensorNoise& s, bool gyro, const NoiseResult& r) {
       if (e.status == TermStatus::kNotSeen) {
         not_seen.push_back(axis);
         if (e.record_needed_s) needed = std::max(needed, *e.record_needed_s);
+        if (e.record_needed_half_s)
+          needed_half = std::max(needed_half, *e.record_needed_half_s);
       }
     }
     const std::string name = TermLabel(t, gyro);
@@ -128,8 +130,10 @@ void PrintFindings(const SensorNoise& s, bool gyro, const NoiseResult& r) {
           Hours(r.record_s));
       if (needed > 0.0) {
         fmt::print(
-            " To measure it, record at least {} (longer if it is below the bound).",
-            Hours(needed));
+            " To measure it, record at least {} (if it is as large as the bound; "
+            "{} if half of it).",
+            Hours(needed),
+            needed_half > 0.0 ? Hours(needed_half) : std::string("longer"));
       }
       fmt::print("\n");
     }

@@ -29,10 +29,11 @@ plus independent noise terms, per axis, in continuous-time coefficients (SI):
   K  rate random walk        accel m/s^3/sqrt(Hz)   gyro rad/s^2/sqrt(Hz)
      increments K sqrt(1/R) per sample; Allan deviation K sqrt(tau / 3)
   B  bias instability        accel m/s^2            gyro rad/s
-     a sum of nine first-order Gauss-Markov processes, correlation times
-     0.5-5000 s two per decade, equal variance, scaled so that the median of
-     their exact Allan deviation over 5-1000 s is 0.664 B (flat there within
-     the "plateau_ripple" of the truth, about +-2 %).  Reading B as
+     a sum of fifteen first-order Gauss-Markov processes, correlation times
+     0.01-100000 s two per decade, equal variance, scaled so that the median
+     of their exact Allan deviation over 0.1-10000 s is 0.664 B (flat there
+     within the "plateau_ripple" of the truth, about +-1.3 %: over every
+     cluster time an analysis of a record up to 11 h fits; see noise_terms).  Reading B as
      min(Allan deviation) / 0.664 gives B where N and K are small at the
      minimum; the truth also gives that textbook reading of the total curve.
   Q  quantisation (--quantisation): the integrated signal rounded to steps

@@ -169,12 +169,19 @@ struct TermEstimate {
   /// The τ range where it carries most of the fitted variance (measured).
   double tau_lo_s = 0.0;
   double tau_hi_s = 0.0;
-  /// Not measured (white noise, bias instability, random walk only): the
-  /// shortest record (s) in which a term at its upper bound would carry
-  /// most of the variance over two octaves of τ below a quarter of the
-  /// record; a smaller true value needs longer. Unset when a longer record
-  /// would not help (kMasked) or there is no bound.
+  /// Not measured (bias instability and random walk): the shortest record
+  /// (s) in which a term at its upper bound would be measured in 9 records
+  /// of 10, with the other terms as fitted: it carries NoiseOptions::
+  /// dominance of the fitted variance at min_region_points cluster times
+  /// (the last at most max_tau_fraction of the record) and its coefficient
+  /// is above zero by the interval with 90 % power, its standard deviation
+  /// forecast by the same weighted fit on the cluster times of that record.
+  /// The data say only that the term is below the bound, so this is the
+  /// shortest record that could show it; `record_needed_half_s` is the
+  /// same for a term half the bound. Unset when no record up to 10⁹ s would
+  /// show it (kMasked) or there is no bound.
   std::optional<double> record_needed_s;
+  std::optional<double> record_needed_half_s;
 };
 
 /// One axis: its Allan curve and the five terms (index: NoiseTerm).

@@ -2,6 +2,8 @@
 // of freedom and χ² confidence intervals (see mpcal/noise.h for the method
 // and the references).
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <cstdint>
@@ -13,6 +15,7 @@
 
 #include "mpcal/error.h"
 #include "mpcal/noise.h"
+#include "noise/noise_fit.h"
 
 namespace mpcal {
 namespace {
@@ -60,14 +63,15 @@ MPCAL_VECTOR_CLONES void SecondDifferenceSquares(const double* theta,
   for (int j = 0; j < 12; ++j) out[j % 3] += acc[j];
 }
 
-// The same over start indices 0, d, 2d, ... < k1.
+// The same over start indices k0, k0 + d, k0 + 2d, ... < k1.
 MPCAL_VECTOR_CLONES void StridedSecondDifferenceSquares(const double* theta,
+                                                        std::int64_t k0,
                                                         std::int64_t k1,
                                                         std::int64_t m,
                                                         std::int64_t d,
                                                         long double out[3]) {
   double acc[3] = {};
-  for (std::int64_t k = 0; k < k1; k += d) {
+  for (std::int64_t k = k0; k < k1; k += d) {
     const double* a = theta + 3 * k;
     const double* b = a + 3 * m;
     const double* c = a + 6 * m;
@@ -77,18 +81,6 @@ MPCAL_VECTOR_CLONES void StridedSecondDifferenceSquares(const double* theta,
     }
   }
   for (int j = 0; j < 3; ++j) out[j] += acc[j];
-}
-
-std::vector<std::int64_t> ClusterSizes(std::int64_t samples, const AllanOptions& o) {
-  const auto m_max = static_cast<std::int64_t>(std::floor(o.max_tau_fraction * samples));
-  std::vector<std::int64_t> ms;
-  for (int j = 0;; ++j) {
-    const auto m =
-        static_cast<std::int64_t>(std::llround(std::exp2(j / o.points_per_octave)));
-    if (m > m_max) break;
-    if (ms.empty() || m > ms.back()) ms.push_back(m);
-  }
-  return ms;
 }
 
 // Regularised lower incomplete gamma P(a, x) (series below a + 1, Lentz's
@@ -131,7 +123,55 @@ double NormalQuantile(double p) {
   return 0.5 * (lo + hi);
 }
 
+// Σ of the squared second differences of τ first..last-1, all of stride d,
+// block by block (see OverlappingAllan).
+void SumGroup(const double* theta,
+              std::int64_t phase,
+              const std::vector<std::int64_t>& ms,
+              std::int64_t d,
+              std::size_t first,
+              std::size_t last,
+              std::vector<std::array<long double, 3>>& totals) {
+  const std::int64_t step = kBlockRows * d;
+  for (std::int64_t k0 = 0; k0 < phase; k0 += step) {
+    for (std::size_t j = first; j < last; ++j) {
+      const std::int64_t k1 = std::min(k0 + step, phase - 2 * ms[j]);
+      if (k1 <= k0) continue;
+      if (d == 1) {
+        SecondDifferenceSquares(theta, k0, k1, ms[j], totals[j].data());
+      } else {
+        StridedSecondDifferenceSquares(theta, k0, k1, ms[j], d, totals[j].data());
+      }
+    }
+  }
+}
+
 }  // namespace
+
+namespace internal {
+
+std::int64_t ClusterStride(std::int64_t m, const AllanOptions& o) {
+  return static_cast<std::int64_t>(std::bit_floor(
+      static_cast<std::uint64_t>(std::max<std::int64_t>(1, m / o.min_overlaps))));
+}
+
+std::vector<std::int64_t> ClusterSizes(std::int64_t samples, const AllanOptions& o) {
+  const auto m_max = static_cast<std::int64_t>(std::floor(o.max_tau_fraction * samples));
+  std::vector<std::int64_t> ms;
+  for (int j = 0;; ++j) {
+    auto m = static_cast<std::int64_t>(std::llround(std::exp2(j / o.points_per_octave)));
+    // A multiple of its stride (τ moves by under 1/(2 min_overlaps)), so
+    // that the τ of one stride all start on the same grid of rows and are
+    // summed together over blocks of it (OverlappingAllan).
+    const std::int64_t d = ClusterStride(m, o);
+    m = d * std::llround(static_cast<double>(m) / static_cast<double>(d));
+    if (m > m_max) break;
+    if (ms.empty() || m > ms.back()) ms.push_back(m);
+  }
+  return ms;
+}
+
+}  // namespace internal
 
 std::string_view ToString(NoiseTerm term) {
   switch (term) {
@@ -204,33 +244,31 @@ CumulativeSums3 CumulativeSums3::FromSamples(std::vector<Eigen::Vector3d>&& samp
 std::array<std::vector<AllanPoint>, 3> OverlappingAllan(const CumulativeSums3& sums,
                                                         const AllanOptions& options) {
   if (const std::string bad = options.Validate(); !bad.empty()) {
-    throw Error("Allan options: " + bad);
+    throw Error(ErrorKind::kOption, "Allan options: " + bad);
   }
   const auto phase = static_cast<std::int64_t>(sums.size());
   if (phase < 9) {
-    throw Error(fmt::format("{} samples are too few for an Allan deviation (at least 8)",
+    throw Error(ErrorKind::kInput,
+                fmt::format("{} samples are too few for an Allan deviation (at least 8)",
                             std::max<std::int64_t>(phase - 1, 0)));
   }
-  const std::vector<std::int64_t> ms = ClusterSizes(phase - 1, options);
+  const std::vector<std::int64_t> ms = internal::ClusterSizes(phase - 1, options);
   const double* theta = sums.theta().front().data();
   std::vector<std::array<long double, 3>> totals(ms.size(), {0.0L, 0.0L, 0.0L});
   std::vector<std::int64_t> strides(ms.size(), 1);
   for (std::size_t j = 0; j < ms.size(); ++j) {
-    if (ms[j] > options.min_overlaps) strides[j] = ms[j] / options.min_overlaps;
+    strides[j] = internal::ClusterStride(ms[j], options);
   }
-
-  // Fully overlapping τ, block by block; then the strided ones, each alone.
-  for (std::int64_t k0 = 0; k0 < phase; k0 += kBlockRows) {
-    for (std::size_t j = 0; j < ms.size() && strides[j] == 1; ++j) {
-      const std::int64_t k1 = std::min(k0 + kBlockRows, phase - 2 * ms[j]);
-      if (k1 > k0) SecondDifferenceSquares(theta, k0, k1, ms[j], totals[j].data());
-    }
-  }
-  for (std::size_t j = 0; j < ms.size(); ++j) {
-    if (strides[j] > 1) {
-      StridedSecondDifferenceSquares(
-          theta, phase - 2 * ms[j], ms[j], strides[j], totals[j].data());
-    }
+  // Fully overlapping τ (stride 1), block by block; then those of each
+  // stride d together, over blocks of kBlockRows rows of the d-grid: their
+  // m are multiples of d within a few dozen grid rows, so the rows a block
+  // reads stay in cache for all of them and memory is read once per stride
+  // rather than three scattered lines per term and τ.
+  for (std::size_t first = 0; first < ms.size();) {
+    std::size_t last = first;
+    while (last < ms.size() && strides[last] == strides[first]) ++last;
+    SumGroup(theta, phase, ms, strides[first], first, last, totals);
+    first = last;
   }
 
   std::array<std::vector<AllanPoint>, 3> curves;

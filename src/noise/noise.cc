@@ -46,7 +46,7 @@ std::string_view ToString(NoiseSegmentKind kind) {
 
 SensorNoise AnalyseSensorNoise(const CumulativeSums3& sums, const NoiseOptions& options) {
   if (const std::string bad = options.Validate(); !bad.empty()) {
-    throw Error("noise options: " + bad);
+    throw Error(ErrorKind::kOption, "noise options: " + bad);
   }
   std::array<std::vector<AllanPoint>, 3> curves = OverlappingAllan(sums, options.allan);
   SensorNoise out;
@@ -104,10 +104,11 @@ NoiseResult AnalyseNoise(Recording&& recording,
                          double accel_mps2_per_unit,
                          const NoiseOptions& options) {
   if (const std::string bad = options.Validate(); !bad.empty()) {
-    throw Error("noise options: " + bad);
+    throw Error(ErrorKind::kOption, "noise options: " + bad);
   }
   if (segment.end > recording.size() || segment.begin + 9 > segment.end) {
     throw Error(
+        ErrorKind::kInput,
         fmt::format("{}: {} samples are too few for an Allan deviation (at least 9)",
                     recording.source,
                     segment.end > segment.begin ? segment.end - segment.begin : 0));
@@ -115,7 +116,8 @@ NoiseResult AnalyseNoise(Recording&& recording,
   NoiseResult r;
   r.segment = segment;
   r.sample_period_s = MedianPeriod(recording.time_s, segment.begin, segment.end);
-  if (!(r.sample_period_s > 0.0)) throw Error(recording.source + ": no sample spacing");
+  if (!(r.sample_period_s > 0.0))
+    throw Error(ErrorKind::kTime, recording.source + ": no sample spacing");
   r.rate_hz = 1.0 / r.sample_period_s;
   for (std::size_t i = segment.begin + 1; i < segment.end; ++i) {
     if (recording.time_s[i] - recording.time_s[i - 1] > 1.5 * r.sample_period_s) ++r.gaps;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -23,6 +24,7 @@ namespace {
 constexpr int kTerms = kNoiseTermCount;
 using TermMask = unsigned;
 using Coefficients = std::array<double, kTerms>;  // Q², N², B², K², R²
+constexpr int kRampIndex = static_cast<int>(NoiseTerm::kRateRamp);
 
 // σ²(τ) per unit coefficient of each term (IEEE 952 Table C.2).
 double Basis(int term, double tau_s) {
@@ -170,16 +172,149 @@ std::vector<std::size_t> DominatedPoints(const std::vector<AllanPoint>& curve,
   return out;
 }
 
-// Term t at coefficient c_t is seen at τ when it carries `dominance` of the
-// variance with the other measured terms `others`; the smallest such τ on a
-// fine log grid up to 10⁹ s, or NaN.
-double FirstDominantTau(
-    const Coefficients& others, int t, double c_t, double tau0_s, double dominance) {
-  for (double tau = tau0_s; tau < 1e9; tau *= std::exp2(1.0 / 16.0)) {
-    const double own = c_t * Basis(t, tau);
-    if (own >= dominance * (own + Model(others, tau))) return tau;
+// What the fit would give on a record of `record_s` whose curve is the model
+// `c` (exactly): how many cluster times term t carries `dominance` of the
+// variance at, and the variance of its coefficient, from the same weighted
+// least squares (weights edf / (2 model²), over the terms of `c` with t,
+// inflated for correlated τ) that FitTerms runs on a measured curve.
+struct Forecast {
+  int region_points = 0;
+  double variance = std::numeric_limits<double>::infinity();
+};
+
+Forecast ForecastFit(
+    const Coefficients& c, int t, double record_s, const NoiseOptions& o, double tau0_s) {
+  const auto samples = static_cast<std::int64_t>(record_s / tau0_s);
+  const std::vector<std::int64_t> ms = internal::ClusterSizes(samples, o.allan);
+  const double n = static_cast<double>(samples + 1);
+  std::vector<int> cols;
+  for (int j = 0; j < kTerms; ++j) {
+    if (c[j] > 0.0) cols.push_back(j);
+  }
+  const auto k = static_cast<Eigen::Index>(cols.size());
+  Eigen::MatrixXd a(static_cast<Eigen::Index>(ms.size()), k);
+  Forecast f;
+  for (std::size_t r = 0; r < ms.size(); ++r) {
+    const double tau = static_cast<double>(ms[r]) * tau0_s;
+    const double model = Model(c, tau);
+    const auto dominant = static_cast<NoiseTerm>(Dominant(c, tau));
+    const double edf = OverlappingAllanEdf(n, static_cast<double>(ms[r]), dominant);
+    const double sw = std::sqrt(edf / 2.0) / model;
+    for (Eigen::Index i = 0; i < k; ++i) {
+      a(static_cast<Eigen::Index>(r), i) = sw * Basis(cols[i], tau);
+    }
+    f.region_points += c[t] * Basis(t, tau) >= o.dominance * model;
+  }
+  const Eigen::VectorXd scale = a.colwise().norm().transpose();
+  if (a.rows() < k || (scale.array() <= 0.0).any()) return f;
+  const Eigen::MatrixXd as = a * scale.cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd normal = as.transpose() * as;
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(normal);
+  if (ldlt.info() != Eigen::Success) return f;
+  const Eigen::MatrixXd cov = ldlt.solve(Eigen::MatrixXd::Identity(k, k));
+  const auto it = std::find(cols.begin(), cols.end(), t);
+  const auto i = static_cast<Eigen::Index>(it - cols.begin());
+  f.variance = cov(i, i) / (scale(i) * scale(i)) * o.allan.points_per_octave /
+               o.independent_points_per_octave;
+  return f;
+}
+
+// The shortest record, longer than `record_s`, in which term t at
+// coefficient c_t, with the other fitted terms as they are, would be
+// reported as measured in 9 records of 10: it carries `dominance` of the
+// variance at min_region_points cluster times and its coefficient is above
+// zero by the interval with 90 % power (c_t > (z + 1.28)·σ, σ as the fit
+// would find it on that record). Records grow by an eighth of an octave up to 10⁹ s;
+// NaN when none (the neighbouring terms hide it at every length).
+double RecordNeeded(Coefficients c,
+                    int t,
+                    double c_t,
+                    double record_s,
+                    double tau0_s,
+                    const NoiseOptions& o) {
+  c[t] = c_t;
+  // Above zero by the interval (z) in 9 records of 10: z + the 90 % normal
+  // quantile standard deviations of the coefficient.
+  constexpr double kPowerQuantile = 1.2815515655446004;
+  const double z = std::sqrt(ChiSquareQuantile(o.allan.confidence, 1.0)) + kPowerQuantile;
+  for (double length = record_s * std::exp2(0.125); length < 1e9;
+       length *= std::exp2(0.125)) {
+    const Forecast f = ForecastFit(c, t, length, o, tau0_s);
+    if (f.region_points >= o.min_region_points && c_t > z * std::sqrt(f.variance))
+      return length;
   }
   return std::numeric_limits<double>::quiet_NaN();
+}
+
+// Measured terms: value and interval from the coefficient's variance, as a
+// scaled χ² with ν = 2 c² / var(c) degrees of freedom (exact for one point;
+// keeps the interval positive).
+void MeasureTerms(const std::vector<AllanPoint>& curve,
+                  const Fit& fit,
+                  const NoiseOptions& o,
+                  AxisNoise& out) {
+  const double z = std::sqrt(ChiSquareQuantile(o.allan.confidence, 1.0));
+  const double lo_p = 0.5 * (1.0 - o.allan.confidence);
+  for (int t = 0; t < kTerms; ++t) {
+    const std::vector<std::size_t> region = DominatedPoints(curve, fit.c, t, o.dominance);
+    const double c = fit.c[t];
+    const bool significant = c > z * std::sqrt(fit.variance[t]);
+    if (static_cast<int>(region.size()) < o.min_region_points || !significant) continue;
+    TermEstimate& e = out.terms[t];
+    const double nu = std::max(2.0 * c * c / fit.variance[t], 0.1);
+    e.status = TermStatus::kMeasured;
+    e.value = std::sqrt(c);
+    e.lo = std::sqrt(c * nu / ChiSquareQuantile(1.0 - lo_p, nu));
+    e.hi = std::sqrt(c * nu / ChiSquareQuantile(lo_p, nu));
+    e.tau_lo_s = curve[region.front()].tau_s;
+    e.tau_hi_s = curve[region.back()].tau_s;
+  }
+}
+
+// The terms not measured: the tightest upper confidence limit of the term
+// alone, and for bias instability and random walk whether a longer record
+// would show them at that bound and how long (RecordNeeded).
+void BoundTerms(const std::vector<AllanPoint>& curve,
+                const Fit& fit,
+                double record_s,
+                const NoiseOptions& o,
+                AxisNoise& out) {
+  const double tau0_s = curve.front().tau_s / static_cast<double>(curve.front().m);
+  const bool walk_measured = out.term(NoiseTerm::kRandomWalk).value.has_value() ||
+                             out.term(NoiseTerm::kRateRamp).value.has_value();
+  // The forecast's other terms: as fitted, but a rate ramp only where it was
+  // measured (an insignificant one, extrapolated as τ², would hide
+  // everything at long τ).
+  Coefficients others = fit.c;
+  if (!out.term(NoiseTerm::kRateRamp).value) others[kRampIndex] = 0.0;
+  for (int t = 0; t < kTerms; ++t) {
+    TermEstimate& e = out.terms[t];
+    if (e.status == TermStatus::kMeasured) continue;
+    double bound = std::numeric_limits<double>::infinity();
+    for (const AllanPoint& p : curve) {
+      bound = std::min(bound, std::sqrt(p.adev_hi * p.adev_hi / Basis(t, p.tau_s)));
+    }
+    e.upper_bound = std::isfinite(bound) ? bound : 0.0;
+    const auto term = static_cast<NoiseTerm>(t);
+    if (term == NoiseTerm::kBiasInstability && walk_measured) {
+      // The random walk rises before the white noise falls to this level:
+      // a flat region that is not there in this record never will be.
+      e.status = TermStatus::kMasked;
+      continue;
+    }
+    if (term != NoiseTerm::kBiasInstability && term != NoiseTerm::kRandomWalk) continue;
+    if (e.upper_bound <= 0.0) continue;
+    const double needed =
+        RecordNeeded(others, t, e.upper_bound * e.upper_bound, record_s, tau0_s, o);
+    if (std::isfinite(needed)) {
+      e.record_needed_s = needed;
+      const double half = RecordNeeded(
+          others, t, 0.25 * e.upper_bound * e.upper_bound, record_s, tau0_s, o);
+      if (std::isfinite(half)) e.record_needed_half_s = half;
+    } else {
+      e.status = TermStatus::kMasked;
+    }
+  }
 }
 
 }  // namespace
@@ -233,67 +368,9 @@ AxisNoise AnalyseAxis(std::vector<AllanPoint> curve,
   }
   for (int t = 0; t < kTerms; ++t) out.fit_avar_coefficients[t] = fit.c[t];
 
-  // Measured terms: value and interval from the coefficient's variance, as a
-  // scaled χ² with ν = 2 c² / var(c) degrees of freedom (exact for one
-  // point; keeps the interval positive).
-  const double z = std::sqrt(ChiSquareQuantile(o.allan.confidence, 1.0));
-  const double lo_p = 0.5 * (1.0 - o.allan.confidence);
-  for (int t = 0; t < kTerms; ++t) {
-    const std::vector<std::size_t> region = DominatedPoints(curve, fit.c, t, o.dominance);
-    const double c = fit.c[t];
-    const bool significant = c > z * std::sqrt(fit.variance[t]);
-    if (static_cast<int>(region.size()) < o.min_region_points || !significant) continue;
-    TermEstimate& e = out.terms[t];
-    const double nu = std::max(2.0 * c * c / fit.variance[t], 0.1);
-    e.status = TermStatus::kMeasured;
-    e.value = std::sqrt(c);
-    e.lo = std::sqrt(c * nu / ChiSquareQuantile(1.0 - lo_p, nu));
-    e.hi = std::sqrt(c * nu / ChiSquareQuantile(lo_p, nu));
-    e.tau_lo_s = curve[region.front()].tau_s;
-    e.tau_hi_s = curve[region.back()].tau_s;
-  }
-
-  // The others: the tightest upper confidence limit of the term alone, and
-  // for white noise, bias instability and random walk whether a longer
-  // record would show them and how long.
+  MeasureTerms(curve, fit, o, out);
   const double tau0_s = curve.front().tau_s / static_cast<double>(curve.front().m);
-  const double tau_max_s = curve.back().tau_s;
-  const double region_factor =
-      std::exp2((o.min_region_points - 1) / o.allan.points_per_octave);
-  const bool walk_measured = out.term(NoiseTerm::kRandomWalk).value.has_value() ||
-                             out.term(NoiseTerm::kRateRamp).value.has_value();
-  for (int t = 0; t < kTerms; ++t) {
-    TermEstimate& e = out.terms[t];
-    if (e.status == TermStatus::kMeasured) continue;
-    double bound = std::numeric_limits<double>::infinity();
-    for (const AllanPoint& p : curve) {
-      bound = std::min(bound, std::sqrt(p.adev_hi * p.adev_hi / Basis(t, p.tau_s)));
-    }
-    e.upper_bound = std::isfinite(bound) ? bound : 0.0;
-    const NoiseTerm term = static_cast<NoiseTerm>(t);
-    if (term == NoiseTerm::kBiasInstability && walk_measured) {
-      // The random walk rises before the white noise falls to this level:
-      // a flat region that is not there in this record never will be.
-      e.status = TermStatus::kMasked;
-      continue;
-    }
-    if (term != NoiseTerm::kBiasInstability && term != NoiseTerm::kRandomWalk) continue;
-    if (e.upper_bound <= 0.0) continue;
-    Coefficients others = fit.c;
-    others[t] = 0.0;
-    const double tau_seen =
-        FirstDominantTau(others, t, e.upper_bound * e.upper_bound, tau0_s, o.dominance);
-    if (!std::isfinite(tau_seen)) {
-      e.status = TermStatus::kMasked;
-      continue;
-    }
-    // Seen over min_region_points cluster times, the last at most a
-    // quarter (max_tau_fraction) of the record; at least an octave more than
-    // this record, which did not show it (the bound is an upper one: a
-    // smaller term needs longer).
-    const double needed = tau_seen * region_factor / o.allan.max_tau_fraction;
-    e.record_needed_s = std::max(needed, 2.0 * tau_max_s / o.allan.max_tau_fraction);
-  }
+  BoundTerms(curve, fit, (phase_points - 1.0) * tau0_s, o, out);
   out.curve = std::move(curve);
   return out;
 }

@@ -134,7 +134,7 @@ struct NoiseGenerator::Impl {
 
 NoiseGenerator::NoiseGenerator(const NoiseSimulationOptions& options) {
   if (const std::string bad = options.Validate(); !bad.empty()) {
-    throw Error("noise simulation: " + bad);
+    throw Error(ErrorKind::kOption, "noise simulation: " + bad);
   }
   impl_ = std::make_unique<Impl>(options);
   impl_->rows =

@@ -72,3 +72,22 @@ mpcal_cli_test(report_noise EXIT 0 MATCH "wrote r\\.html \\(noise\\)"
   ARGS report --noise ${_still_json} -o r.html)
 mpcal_cli_test(report_noise_not_a_noise_file EXIT 1 MATCH "noise file .*format" ABSENT r.html
   ARGS report --noise ${MPCAL_TEST_DATA}/bad/valid_calib.json -o r.html)
+
+# A 10-minute simulated record (consumer preset, 100 Hz; issue 18): the random
+# walks cannot be measured, so no number: their bounds, and how long to record
+# (the record in which a random walk at the bound would be measured 9 times in
+# 10, and at half the bound).
+set(_ten ${CMAKE_CURRENT_BINARY_DIR}/noise_ten_minutes.csv)
+add_test(NAME cli.noise_ten_minutes_simulate
+  COMMAND $<TARGET_FILE:mpcal_cli> simulate noise --hours 0.16666667 --rate 100 --seed 3
+          -o ${_ten} --truth ${_ten}.truth.json)
+set_tests_properties(cli.noise_ten_minutes_simulate PROPERTIES
+  FIXTURES_SETUP noise_ten_minutes LABELS cli)
+mpcal_cli_test(noise_ten_minutes_no_random_walk_number EXIT 0
+  MATCH "rate random walk K +rad/s²/√Hz +< [0-9.e-]+ \\(not seen\\) +< [0-9.e-]+ \\(not seen\\) +< [0-9.e-]+ \\(not seen\\)"
+  ARGS noise ${_ten})
+mpcal_cli_test(noise_ten_minutes_how_long EXIT 0
+  MATCH "gyroscope rate random walk K on x, y, z: not measured — .* this 10 min record; .* To measure it, record at least [0-9.]+ h \\(if it is as large as the bound; [0-9.]+ h if half of it\\)"
+  ARGS noise ${_ten})
+set_tests_properties(cli.noise_ten_minutes_no_random_walk_number cli.noise_ten_minutes_how_long
+  PROPERTIES FIXTURES_REQUIRED noise_ten_minutes)

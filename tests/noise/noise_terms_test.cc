@@ -86,7 +86,11 @@ TEST(NoiseTerms, TenMinutesCannotMeasureTheRandomWalkAndSaysHowLongToRecord) {
       EXPECT_FALSE(k.value.has_value());  // never a number that was not measured
       EXPECT_GT(k.upper_bound, 0.0);
       ASSERT_TRUE(k.record_needed_s.has_value());
-      EXPECT_GT(*k.record_needed_s, 1.8 * 600.0);  // about an octave more than this
+      // Longer than this record, and longer again for a smaller walk (the
+      // +½ line must rise above the flat floor: about 4x for half of it).
+      EXPECT_GT(*k.record_needed_s, 1.8 * 600.0);
+      ASSERT_TRUE(k.record_needed_half_s.has_value());
+      EXPECT_GT(*k.record_needed_half_s, 2.0 * *k.record_needed_s);
       EXPECT_EQ(a.term(NoiseTerm::kWhiteNoise).status, TermStatus::kMeasured);
     }
   }
