@@ -99,6 +99,8 @@ SampleScan CheckAndScan(const Recording& recording, const std::string& src) {
 Eigen::Vector3d MeanOf(const std::vector<Eigen::Vector3d>& a,
                        std::size_t b,
                        std::size_t e) {
+  // A copy, not a reference: read for every sample.
+  // NOLINTNEXTLINE(performance-unnecessary-copy-initialization)
   const Eigen::Vector3d ref = a[b];
   Eigen::Vector3d s = Eigen::Vector3d::Zero();
   for (std::size_t i = b; i < e; ++i) s += a[i] - ref;
@@ -131,6 +133,69 @@ SphereFit GravityInUnits(const Recording& r,
   return FitSphere(means, r.units);
 }
 
+namespace {
+
+// The limits of one axis: from the range given, or where the readings stick
+// at their extreme far from the centre; infinite when there is none.
+struct AxisLimits {
+  double hi = std::numeric_limits<double>::infinity();
+  double lo = -std::numeric_limits<double>::infinity();
+  bool any() const { return std::isfinite(hi) || std::isfinite(lo); }
+};
+
+// Whether axis k of the readings sticks at `level`: 3 identical samples.
+bool SticksAt(const std::vector<Eigen::Vector3d>& a, int k, double level) {
+  std::size_t run = 0;
+  for (const auto& v : a) {
+    run = v[k] == level ? run + 1 : 0;
+    if (run >= 3) return true;
+  }
+  return false;
+}
+
+AxisLimits LimitsOf(const std::vector<Eigen::Vector3d>& a,
+                    int k,
+                    double range_mps2,
+                    const SphereFit& sphere,
+                    const SampleScan& scan) {
+  AxisLimits limits;
+  const double c = sphere.centre[k];
+  if (range_mps2 > 0.0) {
+    // 99 %: a 16-bit ±2 g sensor tops out at 1.99994 g, and a scale
+    // estimated for counts is good to a fraction of a percent.
+    const double limit = 0.99 * range_mps2 / kStandardGravityMps2 * sphere.radius;
+    limits.hi = c + limit;
+    limits.lo = c - limit;
+    return limits;
+  }
+  const double far = 1.5 * sphere.radius;
+  if (scan.highest[k] - c >= far && SticksAt(a, k, scan.highest[k])) {
+    limits.hi = scan.highest[k];
+  }
+  if (c - scan.lowest[k] >= far && SticksAt(a, k, scan.lowest[k])) {
+    limits.lo = scan.lowest[k];
+  }
+  return limits;
+}
+
+// The limits reached on axis k, as a formula: "|x| >= 8.7", "z >= 32767".
+std::string LimitFormula(int k, const AxisLimits& limits, double c, bool from_range) {
+  constexpr char kAxes[] = "xyz";
+  if (from_range) {
+    return c == 0.0 ? fmt::format("|{}| >= {:.6g}", kAxes[k], limits.hi)
+                    : fmt::format("|{} - {:.6g}| >= {:.6g}", kAxes[k], c, limits.hi - c);
+  }
+  std::string side;
+  if (std::isfinite(limits.hi)) side = fmt::format("{} >= {:.6g}", kAxes[k], limits.hi);
+  if (std::isfinite(limits.lo)) {
+    side +=
+        fmt::format("{}{} <= {:.6g}", side.empty() ? "" : " or ", kAxes[k], limits.lo);
+  }
+  return side;
+}
+
+}  // namespace
+
 Clipping MarkClipped(const std::vector<Eigen::Vector3d>& a,
                      double range_mps2,
                      const SphereFit& sphere,
@@ -139,58 +204,23 @@ Clipping MarkClipped(const std::vector<Eigen::Vector3d>& a,
   Clipping out;
   out.clipped.assign(n, 0);
   if (!(sphere.radius > 0.0)) return out;
-  constexpr char kAxes[] = "xyz";
-  std::vector<std::string> limits;
+  std::vector<std::string> formulas;
   for (int k = 0; k < 3; ++k) {
-    const double c = sphere.centre[k];
-    double hi_limit = std::numeric_limits<double>::infinity();
-    double lo_limit = -hi_limit;
-    if (range_mps2 > 0.0) {
-      // 99 %: a 16-bit ±2 g sensor tops out at 1.99994 g, and a scale
-      // estimated for counts is good to a fraction of a percent.
-      const double limit = 0.99 * range_mps2 / kStandardGravityMps2 * sphere.radius;
-      hi_limit = c + limit;
-      lo_limit = c - limit;
-    } else {
-      const double hi = scan.highest[k];
-      const double lo = scan.lowest[k];
-      // A level counts when the sensor sticks there: 3 identical samples.
-      auto sticks_at = [&](double level) {
-        std::size_t run = 0;
-        for (const auto& v : a) {
-          run = v[k] == level ? run + 1 : 0;
-          if (run >= 3) return true;
-        }
-        return false;
-      };
-      const double far = 1.5 * sphere.radius;
-      if (hi - c >= far && sticks_at(hi)) hi_limit = hi;
-      if (c - lo >= far && sticks_at(lo)) lo_limit = lo;
-    }
-    std::size_t count = 0;
+    const AxisLimits limits = LimitsOf(a, k, range_mps2, sphere, scan);
     // (The readings are finite: with no limit on this axis, none is at one.)
-    const bool limited = std::isfinite(hi_limit) || std::isfinite(lo_limit);
-    for (std::size_t i = 0; limited && i < n; ++i) {
-      if (a[i][k] >= hi_limit || a[i][k] <= lo_limit) {
+    if (!limits.any()) continue;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (a[i][k] >= limits.hi || a[i][k] <= limits.lo) {
         out.clipped[i] = 1;
         ++count;
       }
     }
-    if (count > 0 && range_mps2 > 0.0) {
-      limits.push_back(
-          c == 0.0 ? fmt::format("|{}| >= {:.6g}", kAxes[k], hi_limit)
-                   : fmt::format("|{} - {:.6g}| >= {:.6g}", kAxes[k], c, hi_limit - c));
-    } else if (count > 0) {
-      std::string side;
-      if (std::isfinite(hi_limit)) side = fmt::format("{} >= {:.6g}", kAxes[k], hi_limit);
-      if (std::isfinite(lo_limit)) {
-        side +=
-            fmt::format("{}{} <= {:.6g}", side.empty() ? "" : " or ", kAxes[k], lo_limit);
-      }
-      limits.push_back(side);
+    if (count > 0) {
+      formulas.push_back(LimitFormula(k, limits, sphere.centre[k], range_mps2 > 0.0));
     }
   }
-  out.limits = fmt::format("{}", fmt::join(limits, ", "));
+  out.limits = fmt::format("{}", fmt::join(formulas, ", "));
   out.count =
       static_cast<std::size_t>(std::count(out.clipped.begin(), out.clipped.end(), 1));
   return out;

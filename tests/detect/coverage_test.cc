@@ -155,7 +155,7 @@ TEST(AssessCoverage, SixFacesAreNotEnoughForNineParameters) {
       AllOf(HasSubstr("session has 7 static positions, the 9-parameter model needs at "
                       "least 10: record 3 more positions"),
             HasSubstr("corner"),
-            HasSubstr("--model bias-scale-6")));
+            HasSubstr("6-parameter model")));
   // The same positions are what the six-position protocol needs.
   CoverageOptions six;
   six.model = ModelKind::kBiasScale6;
@@ -196,8 +196,11 @@ TEST(AssessCoverage, SaysToHoldLongerWhenPositionsWereDroppedAsTooShort) {
   EXPECT_THAT(
       Summary(r),
       HasSubstr("session has 4 static positions, the 9-parameter model needs at "
-                "least 10: 20 still stretches shorter than the minimum "
-                "(--min-static) were dropped: hold each position longer; record"));
+                "least 10: 20 still stretches shorter than the minimum static time "
+                "were dropped: hold each position longer; record"));
+  ASSERT_FALSE(r.advice.empty());
+  EXPECT_EQ(r.advice.front().kind, CoverageStepKind::kHoldLonger);
+  EXPECT_TRUE(Names(r.advice.front().advice, Option::kDetectMinStatic));
   // Fewer dropped than kept: stray pauses, not the way the session was held.
   det.dropped_short = 3;
   EXPECT_THAT(Summary(AssessCoverage(det, {})),

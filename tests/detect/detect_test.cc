@@ -329,7 +329,8 @@ TEST(DetectStatic, RejectsARecordingShorterThanAWindow) {
     FAIL() << "no throw";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("shorter than one detection window"));
-    EXPECT_THAT(e.what(), HasSubstr("--window"));
+    EXPECT_EQ(e.kind(), ErrorKind::kSession);
+    EXPECT_TRUE(Names(e.advice(), Option::kDetectWindow));
   }
 }
 
@@ -449,7 +450,7 @@ TEST_P(DetectSimulated, FindsEverySimulatedPosition) {
   const SimulatedSession s = SimulateStatic(so);
   const DetectResult r = DetectStatic(s.recording, {});
   // The initial rest comes first, then the 26 positions.
-  ASSERT_EQ(r.intervals.size(), s.still_ranges.size() + 1) << r.message;
+  ASSERT_EQ(r.intervals.size(), s.still_ranges.size() + 1) << Describe(r.finding);
   EXPECT_LT(r.intervals[0].end, s.still_ranges[0].first);
   const std::vector<StaticInterval> positions(r.intervals.begin() + 1, r.intervals.end());
   const double per_unit = s.truth.mps2_per_unit;

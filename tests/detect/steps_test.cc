@@ -1,6 +1,7 @@
 // The named steps of static detection, each on the rule it carries.
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <gmock/gmock.h>
@@ -20,6 +21,9 @@ using internal::Piece;
 using internal::StillRuns;
 using internal::TrimSettling;
 
+using RunRange = std::pair<std::size_t, std::size_t>;
+RunRange Span(std::size_t begin, std::size_t end) { return {begin, end}; }
+
 std::vector<double> Times(std::size_t n, double period_s) {
   std::vector<double> t(n);
   for (std::size_t i = 0; i < n; ++i) t[i] = static_cast<double>(i) * period_s;
@@ -33,10 +37,10 @@ TEST(FindStillRuns, RunsAreTheStretchesAtOrBelowTheThreshold) {
   const std::vector<double> stat{inf, 1.0, 1.0, 5.0, 2.0, 2.0, 2.0, 9.0, 1.0, inf};
   const StillRuns r = FindStillRuns(t, stat, 1, 8, 2.0, 1.0);
   ASSERT_EQ(r.runs.size(), 3u);
-  EXPECT_EQ(r.runs[0], std::make_pair<std::size_t, std::size_t>(1, 3));
-  EXPECT_EQ(r.runs[1], std::make_pair<std::size_t, std::size_t>(4, 7));
+  EXPECT_EQ(r.runs[0], Span(1, 3));
+  EXPECT_EQ(r.runs[1], Span(4, 7));
   // A run still open at the last centre ends there.
-  EXPECT_EQ(r.runs[2], std::make_pair<std::size_t, std::size_t>(8, 9));
+  EXPECT_EQ(r.runs[2], Span(8, 9));
   EXPECT_EQ(r.still_count, 6u);
 }
 
@@ -56,11 +60,11 @@ TEST(TrimSettling, TrimsTheSettlingAtBothEndsAndDropsAFlicker) {
   StillRuns runs;
   runs.runs = {{0, 100}, {150, 160}};  // 0.99 s, and a 0.09 s flicker
   double longest = 0.0;
-  const std::vector<Piece> pieces = TrimSettling(t, a, runs, 0.3, &longest);
+  const std::vector<Piece> pieces = TrimSettling(t, a, runs, 0.305, &longest);
   ASSERT_EQ(pieces.size(), 1u);
-  // Kept: t in [0.3, 0.99 - 0.3] s, samples 30 to 69 inclusive.
-  EXPECT_EQ(pieces[0].begin, 30u);
-  EXPECT_EQ(pieces[0].end, 70u);
+  // Kept: t in [0.305, 0.99 - 0.305] s, samples 31 to 68 inclusive.
+  EXPECT_EQ(pieces[0].begin, 31u);
+  EXPECT_EQ(pieces[0].end, 69u);
   EXPECT_NEAR(longest, 0.99, 1e-12);
   EXPECT_NEAR((pieces[0].mean - Eigen::Vector3d(0, 0, 9.8)).norm(), 0.0, 1e-12);
 }

@@ -195,8 +195,9 @@ TEST(RealRecordings, FerrarisSixPosesCalibrateWithTheSixParameterModelOnly) {
   try {
     CalibrateRecording(rec, CalibrateOptions{});
     FAIL() << "the 9-parameter model must be refused on six poses";
-  } catch (const SessionError& e) {
-    EXPECT_TRUE(OffersSixParameterModel(e.coverage()));
+  } catch (const Error& e) {
+    // Refused by the solver (eleven positions, six orientations).
+    EXPECT_THAT(e.what(), HasSubstr("--model bias-scale-6"));
   }
   CalibrateOptions six;
   six.solve.model = ModelKind::kBiasScale6;
@@ -230,9 +231,9 @@ TEST(MeasureTurns, CarriesGravityOverEachTurnAndFindsTheScaleOfCounts) {
   const std::vector<Turn> turns = MeasureTurns(s.recording, det.intervals);
   ASSERT_EQ(turns.size(), 11u);
   for (const Turn& t : turns) {
-    // The rotation is at least the tilt it causes, and the hand's turn about
-    // gravity adds a little more.
-    EXPECT_GE(t.angle_deg, t.tilt_deg - 3.0);
+    // The rotation is at least the tilt it causes (the hand's turn about
+    // gravity adds more), to within the gyroscope's scale errors (a few %).
+    EXPECT_GE(t.angle_deg, 0.94 * t.tilt_deg - 1.0);
     EXPECT_GT(t.tilt_deg, 20.0);
     EXPECT_NEAR(t.axis.norm(), 1.0, 1e-9);
     EXPECT_GT(t.duration_s(), 0.0);
