@@ -145,10 +145,11 @@ Calibration CalibrateSession(const std::string& path,
       return CalibrateRecording(recording, f.calibrate);
     } catch (const Error& e) {
       if (std::string_view(e.what()).starts_with(path)) throw;
-      throw Error(fmt::format("{}: {}", name, e.what()));
+      throw Error(e.kind(), fmt::format("{}: {}", name, e.what()), e.advice());
     }
   }();
-  for (const std::string& w : result.warnings) PrintWarnings({name + ": " + w});
+  for (const std::string& w : result.warnings)
+    PrintWarnings({fmt::format("{}: {}", name, w)});
   if (!result.solve.converged()) {
     throw Error(
         fmt::format("{}: the fit did not converge ({}); check the positions with "

@@ -96,6 +96,7 @@ std::vector<double> Leverages(const Eigen::MatrixXd& j) {
 
 std::vector<std::string> EstimatedNames(ModelKind model, bool drift) {
   std::vector<std::string> names;
+  names.reserve(kNumModelParameters + 3);
   for (int i = 0; i < ParameterCount(model); ++i) names.emplace_back(kParameterNames[i]);
   if (drift) names.insert(names.end(), {"bias_drift_x", "bias_drift_y", "bias_drift_z"});
   return names;

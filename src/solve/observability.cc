@@ -53,7 +53,7 @@ Observability AnalyseObservability(const Eigen::MatrixXd& jacobian,
   }
   const Eigen::MatrixXd scaled = jacobian * range.asDiagonal();
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled, Eigen::ComputeFullV);
-  const Eigen::VectorXd sv = svd.singularValues();
+  const Eigen::VectorXd& sv = svd.singularValues();
   result.weakest_direction_sigma = sv.size() == n && sv[n - 1] > 0.0
                                        ? 1.0 / sv[n - 1]
                                        : std::numeric_limits<double>::infinity();
