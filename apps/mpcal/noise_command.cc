@@ -148,6 +148,54 @@ void PrintFindings(const SensorNoise& s, bool gyro, const NoiseResult& r) {
   }
 }
 
+// The samples to analyse: all of them with --whole, else as detection finds.
+std::optional<NoiseSegment> ChooseSegment(const NoiseFlags& f,
+                                          const Recording& rec,
+                                          double span_s) {
+  if (f.whole) return NoiseSegment{NoiseSegmentKind::kWholeRecord, 0, rec.size(), 0};
+  const DetectResult det = DetectStatic(rec, f.calibrate.detect);
+  std::optional<NoiseSegment> segment = ChooseNoiseSegment(rec, det);
+  if (!segment) {
+    throw Error(
+        fmt::format("{}: no still part found in {:.1f} s ({}); if the sensor was "
+                    "still, give --whole to analyse all of it",
+                    f.input,
+                    span_s,
+                    ExplainDetection(det.finding)));
+  }
+  return segment;
+}
+
+// The JSON and Kalibr files asked for, and a warning for each Kalibr value
+// that is a bound rather than a measurement.
+void WriteFiles(const NoiseFlags& f, const NoiseResult& r) {
+  if (!f.json.empty()) {
+    WriteFileAtomically(f.json, NoiseJson(r, f.input, f.noise.allan.confidence));
+    fmt::print("wrote {}\n", f.json);
+  }
+  if (f.kalibr.empty()) return;
+  const KalibrFile k = KalibrYaml(r, f.input, f.rostopic);
+  WriteFileAtomically(f.kalibr, k.text);
+  std::fflush(stdout);  // the warnings after the table, also when piped
+  for (const auto& [name, v] :
+       {std::pair{"accelerometer_random_walk", k.accel_random_walk},
+        std::pair{"gyroscope_random_walk", k.gyro_random_walk},
+        std::pair{"accelerometer_noise_density", k.accel_noise_density},
+        std::pair{"gyroscope_noise_density", k.gyro_noise_density}}) {
+    if (!v.upper_bound) continue;
+    fmt::print(stderr,
+               "mpcal: warning: {}: {} was not measured; the file has its upper bound "
+               "{:.4g} (labelled in a comment){}\n",
+               f.kalibr,
+               name,
+               v.value,
+               v.record_needed_s ? fmt::format("; record at least {} to measure it",
+                                               Hours(*v.record_needed_s))
+                                 : "");
+  }
+  fmt::print("wrote {} (Kalibr IMU model: the largest axis of each sensor)\n", f.kalibr);
+}
+
 void Run(NoiseFlags& f) {
   ThrowIfInvalid(f.noise.Validate(), "noise");
   ThrowIfInvalid(f.calibrate.detect.Validate(), "noise");
@@ -174,21 +222,7 @@ void Run(NoiseFlags& f) {
   const double span_s = rec.time_s.back() - rec.time_s.front();
   for (const auto& w : rec.warnings) fmt::print("  note: {}\n", w);
 
-  std::optional<NoiseSegment> segment;
-  if (f.whole) {
-    segment = NoiseSegment{NoiseSegmentKind::kWholeRecord, 0, rows, 0};
-  } else {
-    const DetectResult det = DetectStatic(rec, f.calibrate.detect);
-    segment = ChooseNoiseSegment(rec, det);
-    if (!segment) {
-      throw Error(
-          fmt::format("{}: no still part found in {:.1f} s ({}); if the sensor was "
-                      "still, give --whole to analyse all of it",
-                      f.input,
-                      span_s,
-                      ExplainDetection(det.finding)));
-    }
-  }
+  const std::optional<NoiseSegment> segment = ChooseSegment(f, rec, span_s);
   const double mps2_per_unit = *FixedMps2PerUnit(rec.units);
   TerminalProgress analysing("analysing");
   const NoiseResult r = AnalyseNoise(std::move(rec), *segment, mps2_per_unit, f.noise);
@@ -233,34 +267,7 @@ void Run(NoiseFlags& f) {
   PrintFindings(r.accel_mps2, false, r);
   if (r.gyro_radps) PrintFindings(*r.gyro_radps, true, r);
 
-  if (!f.json.empty()) {
-    WriteFileAtomically(f.json, NoiseJson(r, f.input, f.noise.allan.confidence));
-    fmt::print("wrote {}\n", f.json);
-  }
-  if (!f.kalibr.empty()) {
-    const KalibrFile k = KalibrYaml(r, f.input, f.rostopic);
-    WriteFileAtomically(f.kalibr, k.text);
-    std::fflush(stdout);  // the warnings after the table, also when piped
-    for (const auto& [name, v] :
-         {std::pair{"accelerometer_random_walk", k.accel_random_walk},
-          std::pair{"gyroscope_random_walk", k.gyro_random_walk},
-          std::pair{"accelerometer_noise_density", k.accel_noise_density},
-          std::pair{"gyroscope_noise_density", k.gyro_noise_density}}) {
-      if (!v.upper_bound) continue;
-      fmt::print(
-          stderr,
-          "mpcal: warning: {}: {} was not measured; the file has its upper bound {:.4g} "
-          "(labelled in a comment){}\n",
-          f.kalibr,
-          name,
-          v.value,
-          v.record_needed_s ? fmt::format("; record at least {} to measure it",
-                                          Hours(*v.record_needed_s))
-                            : "");
-    }
-    fmt::print("wrote {} (Kalibr IMU model: the largest axis of each sensor)\n",
-               f.kalibr);
-  }
+  WriteFiles(f, r);
 }
 
 }  // namespace
