@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "mpcal/error.h"
 #include "mpcal/simulate.h"
 #include "mpcal/simulate_walk.h"
 #include "mpcal/units.h"
@@ -124,6 +125,26 @@ TEST(WalkTimeline, SidesHoldWholeSwayCyclesAndTurnsSplitTheStops) {
       const WalkState end = Evaluate(p, p.start_s + p.duration_s, o);
       EXPECT_NEAR((end.position - (p.from + p.length_m * p.along)).norm(), 0.0, 1e-9);
     }
+  }
+}
+
+TEST(SimulatePreconditions, ANegativeRateIsAnOptionError) {
+  SimulateStaticOptions o = Static(AccelUnits::kMps2);
+  o.rate_hz = -100.0;
+  try {
+    SimulateStatic(o);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kOption);
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("rate_hz"));
+  }
+  SimulateWalkOptions w = Walk(false);
+  w.rate_hz = -1.0;
+  try {
+    SimulateWalk(w);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kOption);
   }
 }
 

@@ -2,6 +2,8 @@
 // carries one rule of the field verification.
 #include "trajectory/verify_steps.h"
 
+#include <cmath>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -138,6 +140,15 @@ TEST(AddWalkFindings, NoStopInTheMiddleAndAnUnusedGyroscope) {
   findings.clear();
   AddWalkFindings(still, 1000, true, true, findings);
   EXPECT_TRUE(findings.empty());
+}
+
+TEST(TrajectoryPreconditions, NoPositionFromAnEmptyPathNorLengthWithoutAStep) {
+  const TimedPath empty;
+  EXPECT_THROW(empty.At(1.0), Error);
+  const TimedPath walk = WalkEast(0.0, 0.0, 10.0);
+  EXPECT_NEAR(HorizontalPathLength(walk.position_m, 0.25), 10.0, 1e-9);
+  EXPECT_THROW(HorizontalPathLength(walk.position_m, std::nan("")), Error);
+  EXPECT_THROW(HorizontalPathLength(walk.position_m, -1.0), Error);
 }
 
 }  // namespace
