@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -222,8 +223,8 @@ std::pair<double, double> Spread(const RepeatRow& row) {
   for (double v : row.values) mean += v / n;
   double ss = 0.0;
   for (double v : row.values) ss += (v - mean) * (v - mean);
-  const double std = std::sqrt(ss / (n - 1.0));
-  if (row.sigmas.size() != row.values.size()) return {std, -1.0};
+  const double sample_std = std::sqrt(ss / (n - 1.0));
+  if (row.sigmas.size() != row.values.size()) return {sample_std, -1.0};
   double w_sum = 0.0;
   double wx = 0.0;
   for (std::size_t i = 0; i < row.values.size(); ++i) {
@@ -235,7 +236,7 @@ std::pair<double, double> Spread(const RepeatRow& row) {
   for (std::size_t i = 0; i < row.values.size(); ++i) {
     chi2 += std::pow((row.values[i] - wx / w_sum) / row.sigmas[i], 2);
   }
-  return {std, ChiSquareUpperTail(chi2, static_cast<int>(row.values.size()) - 1)};
+  return {sample_std, ChiSquareUpperTail(chi2, static_cast<int>(row.values.size()) - 1)};
 }
 
 }  // namespace
@@ -268,14 +269,14 @@ std::string FormatGyroRepeatTable(std::span<const Calibration> trials,
     }
     double mean = 0.0;
     for (double v : row.values) mean += v / static_cast<double>(row.values.size());
-    const auto [std, p] = Spread(row);
+    const auto [sample_std, p] = Spread(row);
     const bool differs = p >= 0.0 && p < 0.01;
     if (differs) changed.push_back(row.label);
     out += fmt::format(
         " {:>10.3f} {:>10.3f}  {}\n",
         mean,
-        std,
-        p < 0.0 ? "no 1σ"
+        sample_std,
+        p < 0.0 ? std::string("no 1σ")
                 : fmt::format("{} (p = {:.2g})", differs ? "changed" : "consistent", p));
   }
   for (std::size_t i = 0; i < used.size(); ++i)

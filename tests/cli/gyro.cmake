@@ -35,3 +35,14 @@ mpcal_cli_test(demo_gyroscope EXIT 0
 mpcal_cli_test(demo_gyroscope_turns EXIT 0
   MATCH "^gyroscope: 26 turns between the positions; converged after [0-9]+ iterations"
   ARGS demo --output-dir out)
+# repeat and report over IMU files (two calibrations of simulated colibri
+# sessions with --gyro, seeds 1 and 2, made by mpcal calibrate).
+set(_imu1 ${MPCAL_TEST_DATA}/imu_trial_1.json)
+set(_imu2 ${MPCAL_TEST_DATA}/imu_trial_2.json)
+mpcal_cli_test(repeat_imu_files EXIT 0 MATCH "^gyroscope over 2 trials \\(ω = M \\(raw − b\\)\\):"
+  ARGS repeat ${_imu1} ${_imu2})
+mpcal_cli_test(repeat_imu_files_scale_row EXIT 0
+  MATCH "^scale-factor error x +ppm +-?[0-9.]+ ± [0-9.]+ +-?[0-9.]+ ± [0-9.]+ +-?[0-9.]+ +[0-9.]+  (consistent|changed) \\(p = "
+  ARGS repeat ${_imu1} ${_imu2})
+mpcal_cli_test(report_imu_gyro_section EXIT 0 MATCH "<section id=.gyroscope.>"
+  ARGS report --calib ${_imu1} -o -)

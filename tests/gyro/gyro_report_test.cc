@@ -88,8 +88,8 @@ TEST(GyroRotation, DerivativeAlongADirectionIsTheJacobianTimesIt) {
   Eigen::Vector3d along;
   const Eigen::Matrix3d r2 = internal::RotationOverTurnAlong(m, steps, d, &along);
   EXPECT_LT((r - r2).norm(), 1e-14);
-  const Eigen::Map<const Eigen::Matrix<double, 9, 1>> d_vec(
-      Eigen::Matrix<double, 3, 3, Eigen::RowMajor>(d).data());
+  const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> d_rows = d;
+  const Eigen::Map<const Eigen::Matrix<double, 9, 1>> d_vec(d_rows.data());
   EXPECT_LT((full * d_vec - along).norm(), 1e-12 * (1.0 + along.norm()));
 }
 
