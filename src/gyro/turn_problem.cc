@@ -257,6 +257,7 @@ TurnProblem BuildTurnProblem(const Recording& rec,
   problem.noise_std_raw = Median(stds);
   problem.sample_period_s = MedianSamplePeriod(rec);
   std::vector<Eigen::Vector3d> rest_bias;
+  rest_bias.reserve(gyro.size());
   for (const PositionGyro& p : gyro) rest_bias.push_back(p.mean);
   FitGSensitivity(intervals, accel, gyro, g_sensitivity, min_f, &problem, &rest_bias);
   for (const auto& b : rest_bias) problem.bias_without_g_raw += b;
@@ -307,7 +308,7 @@ Eigen::Matrix3d TurnResidual(const TurnData& turn,
                              Eigen::Vector2d* residual,
                              Eigen::Matrix<double, 2, 9>* jacobian) {
   Eigen::Matrix<double, 3, 9> d_theta;
-  const Eigen::Matrix3d r =
+  Eigen::Matrix3d r =
       RotationOverTurn(m, turn.steps, jacobian != nullptr ? &d_theta : nullptr);
   const Eigen::Vector3d carried = r.transpose() * turn.u_from;
   if (residual != nullptr) *residual = turn.basis_to.transpose() * carried;
@@ -322,9 +323,9 @@ Eigen::Matrix3d TurnResidualAlong(const TurnData& turn,
                                   Eigen::Vector2d* residual,
                                   Eigen::Vector2d* derivative) {
   Eigen::Vector3d d_theta = Eigen::Vector3d::Zero();
-  const Eigen::Matrix3d r =
-      derivative != nullptr ? RotationOverTurnAlong(m, turn.steps, direction, &d_theta)
-                            : RotationOverTurn(m, turn.steps, nullptr);
+  Eigen::Matrix3d r = derivative != nullptr
+                          ? RotationOverTurnAlong(m, turn.steps, direction, &d_theta)
+                          : RotationOverTurn(m, turn.steps, nullptr);
   const Eigen::Vector3d carried = r.transpose() * turn.u_from;
   if (residual != nullptr) *residual = turn.basis_to.transpose() * carried;
   if (derivative != nullptr) {
