@@ -24,8 +24,8 @@
 #include "mpcal/report.h"
 #include "mpcal/simulate.h"
 #include "mpcal/simulate_walk.h"
-#include "simulated_bound.h"
 #include "mpcal/verify.h"
+#include "simulated_bound.h"
 
 namespace mpcal::cli {
 namespace {

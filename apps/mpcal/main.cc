@@ -77,13 +77,19 @@ int Run(int argc, char** argv);
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (HoldClosedStandardDescriptors()) {
-    PrintError("standard output is closed; redirect it to a file or to /dev/null");
+  try {
+    if (HoldClosedStandardDescriptors()) {
+      PrintError("standard output is closed; redirect it to a file or to /dev/null");
+      return 1;
+    }
+    const int code = Run(argc, argv);
+    if (code == 0) mpcal::cli::FlushWarnings();
+    return CloseStdout(code);
+  } catch (...) {
+    // Printing the error itself failed (no memory left to format it): the
+    // exit code is all that can still be said.
     return 1;
   }
-  const int code = Run(argc, argv);
-  if (code == 0) mpcal::cli::FlushWarnings();
-  return CloseStdout(code);
 }
 
 namespace {

@@ -114,7 +114,6 @@ RepeatabilityResult AnalyzeRepeatability(std::span<const Calibration> trials,
 RepeatabilityResult AnalyzeRepeatability(std::span<const Calibration> trials,
                                          const RepeatabilityOptions& options = {});
 
-
 /// The paper's table in the paper's units: one column per trial, then mean,
 /// "std (n)" and "std (n-1)", the RMS of the trials' own 1σ ("1σ (rms)", "-"
 /// without), rows bias (g), scale-factor error (ppm), non-orthogonality (rad),

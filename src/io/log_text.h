@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mpcal/advice.h"
+#include "text/text.h"
 
 namespace mpcal::logio {
 
@@ -30,11 +31,9 @@ inline constexpr const char* kRoleKeys[] = {"", "t", "ax", "ay", "az", "gx", "gy
 
 inline bool IsBlank(char c) { return c == ' ' || c == '\t'; }
 
-inline std::string_view Trim(std::string_view s) {
-  while (!s.empty() && (IsBlank(s.front()) || s.front() == '\r')) s.remove_prefix(1);
-  while (!s.empty() && (IsBlank(s.back()) || s.back() == '\r')) s.remove_suffix(1);
-  return s;
-}
+// Trimming and case folding are the project's one text-helpers header's.
+using text::Lower;
+using text::Trim;
 
 inline std::string_view StripQuotes(std::string_view s) {
   s = Trim(s);
@@ -42,14 +41,6 @@ inline std::string_view StripQuotes(std::string_view s) {
     s = s.substr(1, s.size() - 2);
   }
   return Trim(s);
-}
-
-inline std::string Lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) {
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  }
-  return out;
 }
 
 /// At most `max` characters of `s`, control characters shown as '?'.

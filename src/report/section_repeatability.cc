@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -77,6 +78,7 @@ std::string TrialsTable(const RepeatabilityResult& rep, bool have_sigma) {
 
 std::vector<std::string> TrialNames(const RepeatabilityResult& rep) {
   std::vector<std::string> names;
+  names.reserve(static_cast<std::size_t>(std::max(rep.trials, 0)));
   for (int k = 0; k < rep.trials; ++k) names.push_back(fmt::format("trial {}", k + 1));
   return names;
 }

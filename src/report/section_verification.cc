@@ -47,7 +47,9 @@ std::string MetricsTable(const VerificationSummary& v) {
   return t.Finish();
 }
 
-Series PathSeries(const std::string& name, const EastNorthPath& p, SeriesStyle style) {
+Series PathSeries(const std::string& name,
+                  const EastNorthPath& p,
+                  const SeriesStyle& style) {
   Series s;
   s.name = name;
   s.style = style;
@@ -73,7 +75,7 @@ Series ErrorSeries(const std::string& name,
                    const EastNorthPath& path,
                    const EastNorthPath& ref,
                    double t0,
-                   SeriesStyle style) {
+                   const SeriesStyle& style) {
   Series s;
   s.name = name;
   s.style = style;

@@ -75,7 +75,9 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   CheckSolveInput(positions, options);
   const std::size_t count = positions.size();
   SolveResult result;
-  result.used.assign(count, true);
+  result.used = std::vector<bool>(
+      count,
+      true);  // not assign(): GCC 12 warns of a null dereference inside vector<bool>
   result.initial = InitialiseSixPosition(positions, options.gravity_mps2);
   ErrorModel nominal;
   nominal.bias_mps2 = options.nominal_offset_mps2;

@@ -48,3 +48,12 @@ mpcal_cli_test(logger_adxl345_bias EXIT 0 MATCH "^bias x +29\\.[0-9]{3} +0\\.0[0
   ARGS calibrate ${_lg}/adxl345_sample_index.txt --units g --rate 100)
 mpcal_cli_test(logger_one_hemisphere_bias EXIT 0 MATCH "^bias x +12\\.[0-9]{3} +0\\.1[0-9]{2} +mg"
   ARGS calibrate ${_lg}/one_hemisphere_12.csv --units g)
+# A calibration recorded from one logger (phyphox's named columns), applied to
+# a log of another (acc_x...): the recorded columns do not fit (ErrorKind::kColumns),
+# so apply reads the log by its own header instead of refusing it.
+add_test(NAME cli.logger_apply_falls_back_to_the_header
+  COMMAND ${MPCAL_CLI_EXPECT} 0 "corrected 240 rows"
+          --workdir ${CMAKE_CURRENT_BINARY_DIR}/logger_apply_falls_back_to_the_header
+          -- sh -c "\"$0\" calibrate '${_lg}/phone_export_en.csv' -o c.json >/dev/null && grep -q '\"columns\": \"t=' c.json && exec \"$0\" apply c.json '${MPCAL_TEST_DATA}/apply_log.csv' -o out.csv"
+          $<TARGET_FILE:mpcal_cli>)
+set_tests_properties(cli.logger_apply_falls_back_to_the_header PROPERTIES LABELS cli)
