@@ -32,7 +32,9 @@ std::string ExplainDetection(const DetectFinding& f) {
         if (s.option == Option::kDetectThreshold) {
           alternative = fmt::format(", or a larger {}", FlagName(s.option));
         } else {
-          together += (together.empty() ? "" : " ") + FlagWithValue(s);
+          // (Appended in two steps: GCC 12's -Wrestrict misfires on "" + string.)
+          if (!together.empty()) together += ' ';
+          together += FlagWithValue(s);
         }
       }
       return fmt::format("{}: hold each position longer, or try {}{}",

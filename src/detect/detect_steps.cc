@@ -136,7 +136,7 @@ StaticInterval IntervalOf(const std::vector<Piece>& group,
     iv.mean = group.front().mean;
   } else {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    const Eigen::Vector3d r = a[iv.begin];
+    const Eigen::Vector3d& r = a[iv.begin];
     for (const Piece& p : group) {
       for (std::size_t i = p.begin; i < p.end; ++i) sum += a[i] - r;
       used += p.end - p.begin;

@@ -99,9 +99,13 @@ ReportInputs LoadReportInputs(const ReportFiles& files) {
     }
     for (const auto& [role, p] : trajectories) {
       EastNorthPath path = ReadEastNorthCsv(p);
-      if (role == "reference") v.reference_path = std::move(path);
-      if (role == "raw") v.raw_path = std::move(path);
-      if (role == "corrected") v.corrected_path = std::move(path);
+      if (role == "reference") {
+        v.reference_path = std::move(path);
+      } else if (role == "raw") {
+        v.raw_path = std::move(path);
+      } else if (role == "corrected") {
+        v.corrected_path = std::move(path);
+      }
       in.input_files.emplace_back("Trajectory (" + role + ")", p);
     }
     in.verification = std::move(v);

@@ -90,7 +90,7 @@ std::string BiasFigure(const GyroCalibration& g) {
   }
   for (int axis = 0; axis < 3; ++axis) {
     constexpr std::array<const char*, 3> kClass = {"bar", "bar-dark", "bar-z"};
-    BarSeries series{fmt::format("{}", kAxis[axis]), {}, kClass[axis]};
+    BarSeries series{fmt::format("{}", kAxis[axis]), {}, kClass[axis], {}};
     for (const GyroBiasSample& b : g.position_bias) {
       series.values.push_back((b.bias_radps[axis] - mean[axis]) * kDegPerRad);
     }
@@ -104,8 +104,8 @@ std::string BiasFigure(const GyroCalibration& g) {
 }
 
 std::string TurnCharts(const std::vector<GyroTurn>& turns) {
-  BarSeries before{"before (nominal scale)", {}, "bar"};
-  BarSeries after{"after calibration", {}, "bar"};
+  BarSeries before{"before (nominal scale)", {}, "bar", {}};
+  BarSeries after{"after calibration", {}, "bar", {}};
   BarMarkers sigma{"1\u03c3 of the turn", {}, StandardStyle(2)};
   std::vector<std::string> categories;
   for (std::size_t k = 0; k < turns.size(); ++k) {

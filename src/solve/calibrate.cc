@@ -273,6 +273,7 @@ Eigen::Vector3d NominalScale(const Recording& recording,
     result->mps2_per_unit = *fixed;
   } else {
     std::vector<Eigen::Vector3d> means;
+    means.reserve(intervals.size());
     for (const auto& in : intervals) means.push_back(in.mean);
     const SphereFit sphere = FitSphere(means, AccelUnits::kCounts);
     if (!sphere.fitted || !(sphere.radius > 0.0)) {

@@ -196,8 +196,11 @@ TEST(RealRecordings, FerrarisSixPosesCalibrateWithTheSixParameterModelOnly) {
     CalibrateRecording(rec, CalibrateOptions{});
     FAIL() << "the 9-parameter model must be refused on six poses";
   } catch (const Error& e) {
-    // Refused by the solver (eleven positions, six orientations).
-    EXPECT_THAT(e.what(), HasSubstr("--model bias-scale-6"));
+    // Refused by the solver (eleven positions, six orientations), advising
+    // the six-parameter model as a fact (the command spells it as a flag).
+    ASSERT_FALSE(e.advice().settings.empty());
+    EXPECT_EQ(e.advice().settings[0].option, Option::kModel);
+    EXPECT_EQ(e.advice().settings[0].value, "bias-scale-6");
   }
   CalibrateOptions six;
   six.solve.model = ModelKind::kBiasScale6;
