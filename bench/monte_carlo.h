@@ -72,8 +72,12 @@ inline SimulateStaticOptions DrawSession(const Envelope& e, std::mt19937_64& rng
 struct Outcome {
   Eigen::Matrix<double, 9, 1> error_over_bound;
   Eigen::Matrix<double, 9, 1> reported_over_bound;
+  /// (estimate − truth)/reported 1σ: standard normal when the 1σ is honest.
+  Eigen::Matrix<double, 9, 1> z;
   /// Whether the calibration chose a drifting bias.
   bool drift_chosen = false;
+  /// Whether the split-half check widened the 1σ (its halves disagreed).
+  bool widened = false;
 };
 
 inline std::optional<Outcome> RunSession(const SimulateStaticOptions& options) {
@@ -106,10 +110,14 @@ inline std::optional<Outcome> RunSession(const SimulateStaticOptions& options) {
     }
     const Eigen::Matrix<double, 9, 1> bound =
         SimulatedBoundSigma(as_chosen, options.initial_rest_s);
-    return Outcome{(ToVector(r.calibration.model) - ToVector(as_chosen.truth.model))
-                       .cwiseQuotient(bound),
-                   ToVector(*r.calibration.std).cwiseQuotient(bound),
-                   r.calibration.bias_drift.has_value()};
+    const Eigen::Matrix<double, 9, 1> error =
+        ToVector(r.calibration.model) - ToVector(as_chosen.truth.model);
+    const Eigen::Matrix<double, 9, 1> reported = ToVector(*r.calibration.std);
+    return Outcome{error.cwiseQuotient(bound),
+                   reported.cwiseQuotient(bound),
+                   error.cwiseQuotient(reported),
+                   r.calibration.bias_drift.has_value(),
+                   r.solve.split_half && r.solve.split_half->widening > 1.0};
   } catch (const Error&) {
     return std::nullopt;
   }

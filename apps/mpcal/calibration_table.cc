@@ -112,7 +112,7 @@ std::string FormatParameterTable(const Calibration& calibration,
     const double per = 60.0 * 1e3 / kStandardGravityMps2;
     out += fmt::format(
         "bias drift x, y, z: {:+.4f} ± {:.4f}, {:+.4f} ± {:.4f}, {:+.4f} ± {:.4f} mg/min "
-        "(F test p = {:.2g}); the bias above is the bias at t = {:.1f} s, the middle of "
+        "(p = {:.2g}); the bias above is the bias at t = {:.1f} s, the middle of "
         "the positions\n",
         d.mps2_per_s.x() * per,
         d.std_mps2_per_s.x() * per,
@@ -176,7 +176,7 @@ std::string FormatFitSummary(const CalibrateResult& result) {
   }
   if (s.bias_drift_p_value && !s.bias_drift) {
     out += fmt::format(
-        "bias drift: not significant (F test p = {:.2g}); the bias is constant\n",
+        "bias drift: not significant (p = {:.2g}); the bias is constant\n",
         *s.bias_drift_p_value);
   }
   if (s.split_half) out += FormatSplitHalf(*s.split_half);

@@ -54,7 +54,9 @@ struct BiasDrift {
   Eigen::Vector3d std_mps2_per_s = Eigen::Vector3d::Zero();
   /// t_ref in the calibration log's own clock (s).
   double reference_time_s = 0.0;
-  /// P-value of the F test that chose the drift over a constant bias.
+  /// P-value of the test that chose the drift over a constant bias (a
+  /// likelihood ratio with the sensor noise as weights, or an F test when the
+  /// positions scatter beyond it; SolveOptions::consider_bias_drift).
   double p_value = 0.0;
 };
 
@@ -94,12 +96,16 @@ struct SplitHalfComparison {
   double chi2 = 0.0;
   int dof = 0;
   double p_value = 1.0;
-  /// p_value below the significance: the halves disagree beyond chance.
+  /// p_value below its share of the check's significance (the significance
+  /// over the number of determined splits): the halves disagree beyond
+  /// chance.
   bool disagree = false;
 };
 
 /// The split-half check of one calibration (`"fit.split_half"`).
 struct SplitHalfSummary {
+  /// The check's false-alarm rate: the probability that a session whose 1σ
+  /// is honest has any split called disagreeing.
   double significance = 0.01;
   std::vector<SplitHalfComparison> comparisons;
   /// Factor every 1σ was multiplied by: 1, or √(χ²/dof) of the worst split

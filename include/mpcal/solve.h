@@ -56,8 +56,12 @@ struct SolveOptions {
   double split_half_significance = 0.01;
   /// A bias drifting linearly over the session, b(t) = b + d·(t − t_ref),
   /// three more parameters: fitted besides the constant bias and chosen
-  /// when an F test of the improvement rejects a constant bias at
-  /// `bias_drift_significance`. Off: the bias is constant.
+  /// when the improvement rejects a constant bias at
+  /// `bias_drift_significance`: by a likelihood-ratio test (χ² with 3
+  /// degrees of freedom) when the drifting fit leaves no scatter beyond the
+  /// sensor noise, so that the weights are known; by an F test when the
+  /// weights' level is estimated from the residuals. Off: the bias is
+  /// constant.
   bool consider_bias_drift = true;
   double bias_drift_significance = 0.01;
   /// Fit the drift whatever the test says (the split-half check fits the
@@ -120,7 +124,7 @@ struct SolveResult {
   /// The split-half check; nullopt when it is off. The covariance and std
   /// above already carry its widening.
   std::optional<SplitHalfSummary> split_half;
-  /// The drift of the bias when the F test chose it (`estimate` then holds
+  /// The drift of the bias when the test chose it (`estimate` then holds
   /// the bias at its reference time), and the test's p-value whenever the
   /// test was made (enough positions for 12 parameters).
   std::optional<BiasDrift> bias_drift;

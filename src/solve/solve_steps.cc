@@ -25,7 +25,7 @@ constexpr double kMaxPlausibleAngleRad = 0.5;
 constexpr double kMaxOutlierShare = 0.2;
 
 // Fewer redundant positions than this, with the drift's three parameters
-// fitted, leave the F test too little to judge by.
+// fitted, leave the test too little to judge by.
 constexpr int kMinDriftRedundancy = 3;
 
 // One position out; false (and the position back in, with a warning) when
@@ -170,6 +170,34 @@ std::optional<double> DriftFTest(double chi2_constant,
   return FUpperTail(f, 3, redundancy);
 }
 
+namespace {
+
+// The test of the drift's three parameters. When the drifting fit's residuals
+// show no scatter beyond the sensor noise (its scatter test at 1 % did not
+// fire, or the scatter is known), the weights are known — each position's
+// noise, measured from its own thousands of samples — and the likelihood
+// ratio, the drop in χ² under those weights, is χ² with 3 degrees of
+// freedom. Otherwise the weights' level is estimated from the residuals and
+// the F test accounts for it, both χ² with the constant fit's weights (its
+// noise and scatter). Only the F test at few redundant positions would
+// miss most drifts: F(3, 2) rejects at 1 % beyond 99, χ²(3)/3 beyond 3.8;
+// a missed drift goes into the scatter and the 1σ of every parameter.
+std::optional<double> DriftPValue(const Fit& constant,
+                                  const Fit& drifting,
+                                  int redundancy) {
+  if (drifting.scatter_variance() == 0.0) {
+    const double drop =
+        ChiSquare(constant, drifting.sigmas()) - ChiSquare(drifting, drifting.sigmas());
+    if (!std::isfinite(drop)) return std::nullopt;
+    return ChiSquareUpperTail(std::max(drop, 0.0), 3);
+  }
+  return DriftFTest(ChiSquare(constant, constant.sigmas()),
+                    ChiSquare(drifting, constant.sigmas()),
+                    redundancy);
+}
+
+}  // namespace
+
 void ChooseBiasDrift(const FitInput& in,
                      const SolveOptions& options,
                      double reference_s,
@@ -195,10 +223,7 @@ void ChooseBiasDrift(const FitInput& in,
       throw Error(ErrorKind::kSession, "the fit with a drifting bias did not converge");
     return;
   }
-  // Both χ² with the constant fit's weights (its noise and scatter). F rather
-  // than a χ² test, since the weights' overall level is itself uncertain.
-  const std::optional<double> p_value = DriftFTest(
-      ChiSquare(*fit, fit->sigmas()), ChiSquare(*drifting, fit->sigmas()), redundancy);
+  const std::optional<double> p_value = DriftPValue(*fit, *drifting, redundancy);
   if (!p_value) return;
   result.bias_drift_p_value = *p_value;
   if (!(*p_value < options.bias_drift_significance) && !options.force_bias_drift) return;

@@ -20,7 +20,7 @@ using Vector9 = Eigen::Matrix<double, kNumModelParameters, 1>;
 // fewer would leave its 1σ resting on a barely determined fit. Interleaved,
 // the halves share the orientations of the whole and take its scatter
 // (SolveOptions::known_position_scatter_mps2), so they are two samples of one
-// design: 3, as for the drift's F test, is enough for the linearised 1σ
+// design: 3, as for the drift's test, is enough for the linearised 1σ
 // (tests/solve/split_half_test.cc measures the false alarms of 13 + 13).
 
 }  // namespace
@@ -105,8 +105,7 @@ std::optional<SolveResult> FitHalf(const std::vector<PositionObservation>& half,
 SplitHalfComparison Compare(std::span<const PositionObservation> positions,
                             const std::vector<bool>& used,
                             SplitKind kind,
-                            const SolveOptions& half_options,
-                            double significance) {
+                            const SolveOptions& half_options) {
   const auto halves = Halves(positions, used, kind);
   SplitHalfComparison c;
   c.kind = kind;
@@ -150,11 +149,27 @@ SplitHalfComparison Compare(std::span<const PositionObservation> positions,
           : sum_sq;
   c.dof = p;
   c.p_value = ChiSquareUpperTail(c.chi2, p);
-  c.disagree = c.p_value < significance;
   return c;
 }
 
 }  // namespace
+
+double JudgeSplits(std::vector<SplitHalfComparison>& comparisons, double significance) {
+  // The significance is the whole check's: of a session whose 1σ is honest,
+  // one in 1/significance is widened, however many splits were made
+  // (Bonferroni: each split at significance/n). Two splits tested at the full
+  // significance each would widen twice as many honest sessions, each by at
+  // least √(χ²₀.₉₉(9)/9) = 1.55.
+  const auto determined = std::count_if(
+      comparisons.begin(), comparisons.end(), [](const auto& c) { return c.determined; });
+  double widening = 1.0;
+  for (SplitHalfComparison& c : comparisons) {
+    if (!c.determined) continue;
+    c.disagree = c.p_value < significance / static_cast<double>(determined);
+    if (c.disagree) widening = std::max(widening, std::sqrt(c.chi2 / c.dof));
+  }
+  return widening;
+}
 
 SplitHalfSummary CheckSplitHalves(std::span<const PositionObservation> positions,
                                   const std::vector<bool>& used,
@@ -165,13 +180,9 @@ SplitHalfSummary CheckSplitHalves(std::span<const PositionObservation> positions
   SplitHalfSummary summary;
   summary.significance = options.split_half_significance;
   for (SplitKind kind : {SplitKind::kByTime, SplitKind::kInterleaved}) {
-    SplitHalfComparison c =
-        Compare(positions, used, kind, half_options, options.split_half_significance);
-    if (c.determined && c.disagree) {
-      summary.widening = std::max(summary.widening, std::sqrt(c.chi2 / c.dof));
-    }
-    summary.comparisons.push_back(std::move(c));
+    summary.comparisons.push_back(Compare(positions, used, kind, half_options));
   }
+  summary.widening = JudgeSplits(summary.comparisons, summary.significance);
   return summary;
 }
 

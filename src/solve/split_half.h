@@ -19,11 +19,19 @@ namespace mpcal::internal {
 /// `options` (no cross-validation, no split-half check of their own) and
 /// compares them. A split is not `determined` when a half leaves a
 /// parameter undetermined or its fit fails. `widening` is √(χ²/dof) of the
-/// worst split whose χ² test rejects at options.split_half_significance,
-/// else 1.
+/// worst split whose χ² test rejects, else 1; the tests share
+/// options.split_half_significance (each of n determined splits is tested at
+/// significance/n), so that it is the rate at which an honest session is
+/// widened.
 SplitHalfSummary CheckSplitHalves(std::span<const PositionObservation> positions,
                                   const std::vector<bool>& used,
                                   const SolveOptions& options);
+
+/// Marks the determined `comparisons` that disagree beyond chance, each
+/// tested at `significance` over their number (so that `significance` is the
+/// rate at which a session with honest 1σ has any split disagree), and
+/// returns the widening: √(χ²/dof) of the worst that disagrees, else 1.
+double JudgeSplits(std::vector<SplitHalfComparison>& comparisons, double significance);
 
 /// The interleaved split: indices (into `positions`, ascending) of each
 /// half. Positions are paired by nearest orientation in recording order and

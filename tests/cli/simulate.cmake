@@ -50,14 +50,14 @@ add_test(NAME cli.simulate_static_files
 set_tests_properties(cli.simulate_static_files PROPERTIES LABELS cli)
 
 # A bias that drifts over the session: the truth file states it, calibrate
-# finds it (F test) and writes it beside the bias at the end of the session.
+# finds it (the drift test) and writes it beside the bias at the end of the session.
 add_test(NAME cli.simulate_bias_drift_found
   COMMAND sh -c "set -e; rm -rf drift_files && mkdir drift_files && cd drift_files
     \"$0\" simulate static --preset mti-g --seed 5 --bias-drift 2e-5,-1e-5,3e-5 -o s.csv --truth t.json
     grep -q '\"bias_drift_mps2_per_s\"' t.json
     \"$0\" calibrate s.csv -o c.json > out.txt 2>&1
     grep -q '^bias drift x, y, z: ' out.txt
-    grep -Fq 'mg/min (F test p = ' out.txt
+    grep -Fq 'mg/min (p = ' out.txt
     grep -q '\"bias_drift_mps2_per_s\"' c.json
     grep -q '\"bias_reference_time_s\"' c.json"
     $<TARGET_FILE:mpcal_cli>

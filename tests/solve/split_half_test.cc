@@ -195,5 +195,34 @@ TEST(SplitHalf, NotPossibleWhenAHalfCannotDetermineTheModel) {
   EXPECT_EQ(r.split_half->widening, 1.0);
 }
 
+// Two splits share the check's 1 %: a split at p = 0.007 is chance (each is
+// tested at 0.5 %), one at p = 0.003 is not, and a split that could not be
+// made leaves the whole 1 % to the other.
+SplitHalfComparison Judged(double chi2, double p_value, bool determined = true) {
+  SplitHalfComparison c;
+  c.determined = determined;
+  c.chi2 = chi2;
+  c.dof = 9;
+  c.p_value = p_value;
+  return c;
+}
+
+TEST(SplitHalf, TheSplitsShareTheSignificance) {
+  std::vector<SplitHalfComparison> both = {Judged(22.3, 0.007), Judged(9.0, 0.44)};
+  EXPECT_EQ(internal::JudgeSplits(both, 0.01), 1.0);
+  EXPECT_FALSE(both[0].disagree);
+
+  std::vector<SplitHalfComparison> beyond = {Judged(25.0, 0.003), Judged(30.0, 0.0004)};
+  EXPECT_DOUBLE_EQ(internal::JudgeSplits(beyond, 0.01), std::sqrt(30.0 / 9.0));
+  EXPECT_TRUE(beyond[0].disagree);
+  EXPECT_TRUE(beyond[1].disagree);
+
+  std::vector<SplitHalfComparison> one = {Judged(22.3, 0.007),
+                                          Judged(0.0, 1.0, /*determined=*/false)};
+  EXPECT_DOUBLE_EQ(internal::JudgeSplits(one, 0.01), std::sqrt(22.3 / 9.0));
+  EXPECT_TRUE(one[0].disagree);
+  EXPECT_FALSE(one[1].disagree);
+}
+
 }  // namespace
 }  // namespace mpcal
