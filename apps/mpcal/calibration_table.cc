@@ -175,9 +175,8 @@ std::string FormatFitSummary(const CalibrateResult& result) {
         noise_units::MicroGPerRtHz(n->z()));
   }
   if (s.bias_drift_p_value && !s.bias_drift) {
-    out += fmt::format(
-        "bias drift: not significant (p = {:.2g}); the bias is constant\n",
-        *s.bias_drift_p_value);
+    out += fmt::format("bias drift: not significant (p = {:.2g}); the bias is constant\n",
+                       *s.bias_drift_p_value);
   }
   if (s.split_half) out += FormatSplitHalf(*s.split_half);
   if (!s.converged()) out += fmt::format("solver: {}\n", s.message);
