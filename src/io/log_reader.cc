@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <utility>
@@ -184,11 +185,14 @@ bool LogScanner::Next(LogLine* line) {
 Recording ReadLog(const std::string& path, const LogOptions& options) {
   ThrowIfInvalid(options);
   logio::LogFile file(path);
-  std::vector<char> head(logio::kChunkBytes);
+  // Not zeroed first: read(2) writes it.
+  auto head_bytes = std::make_unique_for_overwrite<char[]>(logio::kChunkBytes);
   std::string read_error;
-  head.resize(file.Read(head.data(), head.size(), /*fill=*/true, &read_error));
+  const std::string_view head(
+      head_bytes.get(),
+      file.Read(head_bytes.get(), logio::kChunkBytes, /*fill=*/true, &read_error));
   if (!read_error.empty()) throw Error(ErrorKind::kIo, read_error);
-  const logio::DetectedLayout detected = logio::DetectLayout({head.data(), head.size()},
+  const logio::DetectedLayout detected = logio::DetectLayout(head,
                                                              file.eof(),
                                                              file.source(),
                                                              options,
@@ -218,9 +222,8 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
                       detected.skipped_lines,
                       file.size());
   {
-    logio::ChunkPipeline pipeline(
-        &file, std::string_view(head.data(), head.size()).substr(start), conversion);
-    std::vector<char>().swap(head);
+    logio::ChunkPipeline pipeline(&file, head.substr(start), conversion);
+    head_bytes.reset();
     while (const logio::ChunkRows* chunk = pipeline.Next()) {
       sink.Append(*chunk);
       pipeline.Release();

@@ -10,6 +10,11 @@
 #include "mpcal/plausible.h"
 
 namespace mpcal::logio {
+namespace {
+
+bool IsLineEnd(char c) { return c == '\n' || c == '\r'; }
+
+}  // namespace
 
 RowParser::RowParser(const LogLayout& layout, std::vector<Role> roles, AccelUnits units)
     : layout_(layout),
@@ -22,6 +27,7 @@ RowParser::RowParser(const LogLayout& layout, std::vector<Role> roles, AccelUnit
 // ends (at the next delimiter, a blank, or the end), or nullptr with `why`.
 // Spreadsheets and some loggers quote every field ("0.981"); a '+' before
 // the number and blanks around it are allowed.
+template <bool kInChunk>
 const char* RowParser::ParseField(const char* p,
                                   const char* stop,
                                   int column,
@@ -50,8 +56,9 @@ const char* RowParser::ParseField(const char* p,
     if (after == stop || *after != quote) return bad();
     ++field_end;
   }
-  const bool at_end =
-      field_end == stop || IsBlank(*field_end) || (!blanks && *field_end == delimiter);
+  const bool at_end = field_end == stop || IsBlank(*field_end) ||
+                      (!blanks && *field_end == delimiter) ||
+                      (kInChunk && IsLineEnd(*field_end));
   if (result.ec != std::errc() || !at_end || (p != *number_begin && *p == '-')) {
     return bad();
   }
@@ -69,9 +76,49 @@ const char* RowParser::ParseField(const char* p,
   }
   if (!blanks) {
     while (field_end < stop && IsBlank(*field_end)) ++field_end;
-    if (field_end != stop && *field_end != delimiter) return bad();
+    if (field_end != stop && *field_end != delimiter &&
+        !(kInChunk && IsLineEnd(*field_end)))
+      return bad();
   }
   return field_end;
+}
+
+const char* RowParser::ParseInChunk(const char* p,
+                                    const char* end,
+                                    double* by_role) const {
+  const char delimiter = layout_.delimiter;
+  const bool blanks = delimiter == ' ';
+  const int columns = static_cast<int>(roles_.size());
+  RowFailure why;
+  for (int column = 0; column < columns; ++column) {
+    if (blanks) {
+      while (p < end && IsBlank(*p)) ++p;
+      if (p == end || IsLineEnd(*p)) return nullptr;
+    } else if (column > 0) {
+      if (p == end || *p != delimiter) return nullptr;
+      ++p;
+    }
+    const Role role = roles_[column];
+    if (role == kNone) {  // not needed: skipped, not converted
+      while (p < end && *p != '\n' && (blanks ? !IsBlank(*p) : *p != delimiter)) ++p;
+      continue;
+    }
+    const char* number_begin = nullptr;
+    const char* number_end = nullptr;
+    p = ParseField<true>(
+        p, end, column, &by_role[role], &number_begin, &number_end, &why);
+    if (p == nullptr) return nullptr;
+  }
+  // The last field ended at the line's end, or at what starts the columns
+  // nobody reads (extra columns, trailing blanks).
+  if (p == end) return end;
+  if (*p == '\n') return p + 1;
+  if (*p == '\r') {
+    if (p + 1 == end) return end;
+    return p[1] == '\n' ? p + 2 : nullptr;
+  }
+  const auto* nl = static_cast<const char*>(std::memchr(p, '\n', end - p));
+  return nl != nullptr ? nl + 1 : end;
 }
 
 bool RowParser::Parse(std::string_view text, LogLine* out, RowFailure* why) const {
@@ -109,7 +156,7 @@ bool RowParser::Parse(std::string_view text, LogLine* out, RowFailure* why) cons
     double value = 0.0;
     const char* number_begin = nullptr;
     const char* number_end = nullptr;
-    p = ParseField(p, stop, column, &value, &number_begin, &number_end, why);
+    p = ParseField<false>(p, stop, column, &value, &number_begin, &number_end, why);
     if (p == nullptr) return false;
     if (role == kTime) {
       out->time_raw = value;

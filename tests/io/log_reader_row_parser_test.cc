@@ -53,6 +53,62 @@ TEST(RowParser, SpansLocateEachReading) {
   EXPECT_EQ(p.line.gyro.z(), 0.3);
 }
 
+// ReadLog's fast path (ParseInChunk, which finds the line's end as it
+// parses) must accept a line only when Parse does, with the same values,
+// and say where the next line starts; what it declines goes to Parse.
+void ExpectFastPathAgrees(const std::string& head,
+                          const std::string& line,
+                          const std::string& eol,
+                          bool fast_expected) {
+  const auto d = DetectLayout(head, true, "log", {}, true);
+  const RowParser parser(d.layout, d.roles, AccelUnits::kMps2);
+  // The line, then another (none after a last line without its end).
+  const std::string chunk = eol.empty() ? line : line + eol + "0,0,0,1,0,0,0\n";
+  double by_role[kGz + 1] = {};
+  const char* next =
+      parser.ParseInChunk(chunk.data(), chunk.data() + chunk.size(), by_role);
+  LogLine reference;
+  RowFailure why;
+  const bool ok = parser.Parse(line, &reference, &why);
+  EXPECT_EQ(next != nullptr, fast_expected) << "'" << line << "'";
+  if (next == nullptr) return;
+  ASSERT_TRUE(ok) << "fast path accepted what Parse refuses: '" << line << "'";
+  EXPECT_EQ(next, chunk.data() + line.size() + eol.size()) << "'" << line << "'";
+  EXPECT_EQ(by_role[kTime], reference.time_raw) << line;
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(by_role[kAx + i], reference.accel[i]) << line;
+    if (d.layout.has_gyro()) {
+      EXPECT_EQ(by_role[kGx + i], reference.gyro[i]) << line;
+    }
+  }
+}
+
+TEST(RowParser, FastPathAgreesWithParse) {
+  const std::string csv = "t,ax,ay,az,gx,gy,gz\n0,0,0,1,0,0,0\n";
+  for (const std::string eol : {"\n", "\r\n"}) {
+    ExpectFastPathAgrees(csv, "0.5,1.25,-2,9.75,0.1,0.2,0.3", eol, true);
+    ExpectFastPathAgrees(csv, "\"0.5\",\"1.25\",-2,9.75,0.1,0.2,+0.3", eol, true);
+    ExpectFastPathAgrees(csv, " 0.5 , 1.25,-2 ,9.75,0.1,0.2,0.3  ", eol, true);
+    ExpectFastPathAgrees(csv, "0.5,1.25,-2,9.75,0.1,0.2,0.3,extra,7", eol, true);
+    // Declined: Parse gives the verdict (and the message).
+    ExpectFastPathAgrees(csv, "0.5,1.25,-2,9.75,0.1,0.2", eol, false);
+    ExpectFastPathAgrees(csv, "0.5,1.25\r,-2,9.75,0.1,0.2,0.3", eol, false);
+    ExpectFastPathAgrees(csv, "0.5,1.25,-2,9.75,0.1,0.2,x", eol, false);
+    ExpectFastPathAgrees(csv, "0.5,1.25,-2,1e300,0.1,0.2,0.3", eol, false);
+    ExpectFastPathAgrees(csv, "# 0.5,1.25,-2,9.75,0.1,0.2,0.3", eol, false);
+    ExpectFastPathAgrees(csv, "", eol, false);
+  }
+  // A stray '\r' before the line's "\r\n" is not part of its end.
+  ExpectFastPathAgrees(csv, "0.5,1.25,-2,9.75,0.1,0.2,0.3\r", "\r\n", false);
+  const std::string blanks = "t ax ay az\n0 0 0 1\n";
+  ExpectFastPathAgrees(blanks, "  0.5   1 2\t3", "\n", true);
+  ExpectFastPathAgrees(blanks, "0.5 1 2 3  ", "\r\n", true);
+  ExpectFastPathAgrees(blanks, "0.5 1 2 3 4 5", "\n", true);
+  ExpectFastPathAgrees(blanks, "0.5 1 2", "\n", false);
+  // The last line of the input, without its end.
+  ExpectFastPathAgrees(csv, "0.5,1.25,-2,9.75,0.1,0.2,0.3", "", true);
+}
+
 TEST(RowParser, BlankSeparatedRows) {
   const Parsed p = ParseRow("t ax ay az\n0 0 0 1\n", "  0.5   1 2\t3  ");
   ASSERT_TRUE(p.ok) << p.problem;
