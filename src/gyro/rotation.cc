@@ -17,6 +17,10 @@ namespace {
 // A turn's per-sample angles at 100 Hz are 0.001-0.05 rad.
 constexpr double kSeriesAngleRad = 0.25;
 
+// The helpers of the per-sample loops below are forced inline: GCC keeps
+// them as calls returning 3 × 3 matrices through memory, which costs a
+// third of a turn's evaluation (bench/gyro_speed_bench.cc).
+
 // Σ_{k=0..5} (−x)^k/(2k + kFirst)!, by Horner's rule on coefficients
 // computed at compile time.
 template <int kFirst>
@@ -31,7 +35,7 @@ constexpr std::array<double, 6> SeriesCoefficients() {
 }
 
 template <int kFirst>
-double AlternatingSeries(double x) {
+[[gnu::always_inline]] inline double AlternatingSeries(double x) {
   static constexpr std::array<double, 6> kCoefficients = SeriesCoefficients<kFirst>();
   double sum = 0.0;
   for (auto c = kCoefficients.rbegin(); c != kCoefficients.rend(); ++c)
@@ -46,7 +50,7 @@ struct SO3Coefficients {
   double c;
 };
 
-SO3Coefficients CoefficientsAt(double theta2) {
+[[gnu::always_inline]] inline SO3Coefficients CoefficientsAt(double theta2) {
   if (theta2 < kSeriesAngleRad * kSeriesAngleRad) {
     return {AlternatingSeries<1>(theta2),
             AlternatingSeries<2>(theta2),
@@ -57,20 +61,26 @@ SO3Coefficients CoefficientsAt(double theta2) {
   return {s / theta, (1.0 - std::cos(theta)) / theta2, (theta - s) / (theta2 * theta)};
 }
 
-Eigen::Matrix3d Hat(const Eigen::Vector3d& v) {
+[[gnu::always_inline]] inline Eigen::Matrix3d Hat(const Eigen::Vector3d& v) {
   Eigen::Matrix3d k;
   k << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
   return k;
+}
+
+// I + a [φ]× + b [φ]×², with [φ]×² = φφᵀ − θ² I.
+[[gnu::always_inline]] inline Eigen::Matrix3d Exp(const Eigen::Vector3d& phi,
+                                                  double theta2,
+                                                  const SO3Coefficients& k) {
+  Eigen::Matrix3d hat2 = phi * phi.transpose();
+  hat2.diagonal().array() -= theta2;
+  return Eigen::Matrix3d::Identity() + k.a * Hat(phi) + k.b * hat2;
 }
 
 }  // namespace
 
 Eigen::Matrix3d ExpSO3(const Eigen::Vector3d& phi) {
   const double theta2 = phi.squaredNorm();
-  const SO3Coefficients k = CoefficientsAt(theta2);
-  Eigen::Matrix3d hat2 = phi * phi.transpose();  // [φ]×² = φφᵀ − θ² I
-  hat2.diagonal().array() -= theta2;
-  return Eigen::Matrix3d::Identity() + k.a * Hat(phi) + k.b * hat2;
+  return Exp(phi, theta2, CoefficientsAt(theta2));
 }
 
 Eigen::Matrix3d RightJacobianSO3(const Eigen::Vector3d& phi) {
@@ -89,7 +99,8 @@ struct ExpAndJacobian {
   Eigen::Matrix3d left_jacobian;
 };
 
-ExpAndJacobian ExpWithLeftJacobian(const Eigen::Vector3d& phi) {
+[[gnu::always_inline]] inline ExpAndJacobian ExpWithLeftJacobian(
+    const Eigen::Vector3d& phi) {
   const double theta2 = phi.squaredNorm();
   const SO3Coefficients k = CoefficientsAt(theta2);
   const Eigen::Matrix3d hat = Hat(phi);
@@ -100,7 +111,8 @@ ExpAndJacobian ExpWithLeftJacobian(const Eigen::Vector3d& phi) {
 }
 
 // φ of one interval (trapezoid plus the two-sample coning term).
-Eigen::Vector3d StepRotationVector(const Eigen::Vector3d& mb, const Eigen::Vector3d& mc) {
+[[gnu::always_inline]] inline Eigen::Vector3d StepRotationVector(
+    const Eigen::Vector3d& mb, const Eigen::Vector3d& mc) {
   return 0.5 * (mb + mc) + mb.cross(mc) / 12.0;
 }
 
@@ -112,7 +124,9 @@ Eigen::Matrix3d RotationOverTurn(const Eigen::Matrix3d& m,
   Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
   if (jacobian == nullptr) {
     for (const TurnStep& s : steps) {
-      r = r * ExpSO3(StepRotationVector(m * s.begin, m * s.end));
+      const Eigen::Vector3d phi = StepRotationVector(m * s.begin, m * s.end);
+      const double theta2 = phi.squaredNorm();
+      r = r * Exp(phi, theta2, CoefficientsAt(theta2));
     }
     return r;
   }
@@ -146,13 +160,17 @@ Eigen::Matrix3d RotationOverTurnAlong(const Eigen::Matrix3d& m,
   for (const TurnStep& s : steps) {
     const Eigen::Vector3d mb = m * s.begin;
     const Eigen::Vector3d mc = m * s.end;
-    const ExpAndJacobian e = ExpWithLeftJacobian(StepRotationVector(mb, mc));
+    const Eigen::Vector3d phi = StepRotationVector(mb, mc);
+    const double theta2 = phi.squaredNorm();
+    const SO3Coefficients k = CoefficientsAt(theta2);
     const Eigen::Vector3d db = direction * s.begin;
     const Eigen::Vector3d dc = direction * s.end;
-    // δφ = D (b + c)/2 + (D b × M c + M b × D c)/12.
+    // δφ = D (b + c)/2 + (D b × M c + M b × D c)/12, and J_l δφ = δφ +
+    // b φ × δφ + c φ × (φ × δφ): three values where J_l needs nine.
     const Eigen::Vector3d d_phi = 0.5 * (db + dc) + (db.cross(mc) + mb.cross(dc)) / 12.0;
-    sum += r * (e.left_jacobian * d_phi);
-    r = r * e.exp;
+    const Eigen::Vector3d phi_d = phi.cross(d_phi);
+    sum += r * (d_phi + k.b * phi_d + k.c * phi.cross(phi_d));
+    r = r * Exp(phi, theta2, k);
   }
   *derivative = r.transpose() * sum;
   return r;
