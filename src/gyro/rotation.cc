@@ -13,13 +13,14 @@ namespace {
 // Jacobian come from their series in θ² to the θ¹⁰ term: the first term left
 // out is under 1e-17 of each (θ¹²/13! at 0.25 rad), below a double's
 // rounding, and the series needs no square root, sine or cosine; the closed
-// forms lose digits to cancellation at small angles (2 of them at 0.25 rad).
-// A turn's per-sample angles at 100 Hz are 0.001-0.05 rad.
+// forms lose digits to cancellation at small angles ((θ − sin θ)/θ³: two at
+// 0.25 rad, five at 0.01 rad). A turn's per-sample angles at 100 Hz are
+// 0.001-0.05 rad.
 constexpr double kSeriesAngleRad = 0.25;
 
-// The helpers of the per-sample loops below are forced inline: GCC keeps
-// them as calls returning 3 × 3 matrices through memory, which costs a
-// third of a turn's evaluation (bench/gyro_speed_bench.cc).
+// The helpers of the per-sample loops are forced inline (gnu::always_inline):
+// GCC keeps them as calls returning 3 × 3 matrices through memory, which cost
+// a third of a turn's evaluation (bench/gyro_speed_bench.cc).
 
 // Σ_{k=0..5} (−x)^k/(2k + kFirst)!, by Horner's rule on coefficients
 // computed at compile time.
