@@ -66,8 +66,10 @@ struct TurnData {
   /// the nominal scale.
   double direction_variance_rad2 = 0.0;
   double gyro_variance_raw2s2 = 0.0;
-  /// Filled by TurnResidual and TurnResidualAlong (a turn is evaluated by
-  /// one thread at a time: Ceres gives each residual block to one thread).
+  /// Filled by TurnResidual and TurnResidualAlong, keyed by M alone: the
+  /// steps must not change once the turn has been evaluated. A turn is
+  /// evaluated by one thread at a time (Ceres gives each residual block to
+  /// one thread).
   mutable TurnCache cache;
 
   double Sigma(double radps_per_unit) const;
