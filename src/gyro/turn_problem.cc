@@ -1,6 +1,7 @@
 #include "turn_problem.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -24,6 +25,26 @@ double Median(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
   return v[v.size() / 2];
 }
+
+// The accelerometer's correction as the affine map it is, a = A y + c
+// (model.h: T·diag(1/(1 + s))·(u y − b)), built once per pass:
+// Calibration::Correct evaluates T's tangents and cosines at every call, and
+// the turns correct every sample of their direction windows.
+struct AffineCorrection {
+  explicit AffineCorrection(const Calibration& accel) {
+    const ErrorModel& e = accel.model;
+    const Eigen::Matrix3d t_over_scale =
+        e.NonOrthogonality() *
+        (Eigen::Vector3d::Ones() + e.scale_factor_error).cwiseInverse().asDiagonal();
+    linear = t_over_scale * accel.mps2_per_unit;
+    offset = -t_over_scale * e.bias_mps2;
+  }
+  Eigen::Vector3d operator()(const Eigen::Vector3d& reading) const {
+    return linear * reading + offset;
+  }
+  Eigen::Matrix3d linear;
+  Eigen::Vector3d offset;
+};
 
 struct PositionGyro {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
@@ -73,6 +94,7 @@ Eigen::Vector3d EdgeDirection(const Recording& rec,
     while (last - 1 > first && rec.time_s[last - 1] > edge_s) --last;
   }
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  const AffineCorrection correct(accel);
   const bool carry = radps_per_unit > 0.0 && !rec.gyro_radps.empty();
   auto step = [&](std::size_t i) {  // rotation from sample i to i + 1
     const Eigen::Vector3d w =
@@ -83,12 +105,12 @@ Eigen::Vector3d EdgeDirection(const Recording& rec,
   if (at_end) {
     for (std::size_t i = last; i-- > first;) {  // r = R_{i, anchor}
       if (carry && i + 1 < last) r = step(i) * r;
-      sum += r.transpose() * accel.Correct(rec.accel[i]);
+      sum += r.transpose() * correct(rec.accel[i]);
     }
   } else {
     for (std::size_t i = first; i < last; ++i) {  // r = R_{anchor, i}
       if (carry && i > first) r = r * step(i - 1);
-      sum += r * accel.Correct(rec.accel[i]);
+      sum += r * correct(rec.accel[i]);
     }
   }
   const double n = static_cast<double>(last - first);
@@ -194,10 +216,11 @@ void FillIncrements(const Recording& rec,
   const double span_s = std::max(b.centre_s - a.centre_s, 1e-9);
   const Eigen::Matrix3d& g_sens = problem.g_sensitivity_raw_per_mps2;
   const bool with_g = g_sens.any();
+  const AffineCorrection correct(accel);
   auto bias_at = [&](std::size_t i, double* lambda) {
     *lambda = std::clamp((rec.time_s[i] - a.centre_s) / span_s, 0.0, 1.0);
     Eigen::Vector3d bias = (1.0 - *lambda) * bias_a + *lambda * bias_b;
-    if (with_g) bias += g_sens * accel.Correct(rec.accel[i]);
+    if (with_g) bias += g_sens * correct(rec.accel[i]);
     return bias;
   };
   t->steps.reserve(t->end - t->begin);
@@ -303,18 +326,75 @@ TurnProblem BuildTurnProblem(const Recording& rec,
   return problem;
 }
 
+namespace {
+
+// The cache entry of `turn` at `m`, computed (with the Jacobian) when absent.
+// The entry of `entries` at the key `matches`, computed by `fill` into the
+// least recently used one when absent; `next` is the least recently used.
+template <typename Entry, typename Matches, typename Fill>
+const Entry& Lookup(std::array<Entry, 2>& entries,
+                    std::size_t& next,
+                    Matches matches,
+                    Fill fill) {
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    if (entries[i].valid && matches(entries[i])) {
+      next = 1 - i;
+      return entries[i];
+    }
+  }
+  Entry& entry = entries[next];
+  fill(entry);
+  entry.valid = true;
+  next = 1 - next;
+  return entry;
+}
+
+// The cache entry of `turn` at `m`, computed (with the Jacobian) when absent.
+const TurnCache::Full& FullAt(const TurnData& turn, const Eigen::Matrix3d& m) {
+  return Lookup(
+      turn.cache.full,
+      turn.cache.next_full,
+      [&](const TurnCache::Full& e) { return e.m == m; },
+      [&](TurnCache::Full& e) {
+        e.m = m;
+        e.rotation = RotationOverTurn(m, turn.steps, &e.d_theta);
+      });
+}
+
+const TurnCache::Along& AlongAt(const TurnData& turn,
+                                const Eigen::Matrix3d& m,
+                                const Eigen::Matrix3d& direction) {
+  return Lookup(
+      turn.cache.along,
+      turn.cache.next_along,
+      [&](const TurnCache::Along& e) { return e.m == m && e.direction == direction; },
+      [&](TurnCache::Along& e) {
+        e.m = m;
+        e.direction = direction;
+        e.rotation = RotationOverTurnAlong(m, turn.steps, direction, &e.d_theta);
+      });
+}
+
+// The residual and the map of δθ to it, at the rotation `r`.
+Eigen::Matrix<double, 2, 3> Residual(const TurnData& turn,
+                                     const Eigen::Matrix3d& r,
+                                     Eigen::Vector2d* residual) {
+  const Eigen::Vector3d carried = r.transpose() * turn.u_from;
+  if (residual != nullptr) *residual = turn.basis_to.transpose() * carried;
+  // R' = R exp([δθ]×) carries u to exp(−[δθ]×) Rᵀu ≈ Rᵀu + [Rᵀu]× δθ.
+  return turn.basis_to.transpose() * Hat(carried);
+}
+
+}  // namespace
+
 Eigen::Matrix3d TurnResidual(const TurnData& turn,
                              const Eigen::Matrix3d& m,
                              Eigen::Vector2d* residual,
                              Eigen::Matrix<double, 2, 9>* jacobian) {
-  Eigen::Matrix<double, 3, 9> d_theta;
-  Eigen::Matrix3d r =
-      RotationOverTurn(m, turn.steps, jacobian != nullptr ? &d_theta : nullptr);
-  const Eigen::Vector3d carried = r.transpose() * turn.u_from;
-  if (residual != nullptr) *residual = turn.basis_to.transpose() * carried;
-  // R' = R exp([δθ]×) carries u to exp(−[δθ]×) Rᵀu ≈ Rᵀu + [Rᵀu]× δθ.
-  if (jacobian != nullptr) *jacobian = turn.basis_to.transpose() * Hat(carried) * d_theta;
-  return r;
+  const TurnCache::Full& entry = FullAt(turn, m);
+  const Eigen::Matrix<double, 2, 3> d_residual = Residual(turn, entry.rotation, residual);
+  if (jacobian != nullptr) *jacobian = d_residual * entry.d_theta;
+  return entry.rotation;
 }
 
 Eigen::Matrix3d TurnResidualAlong(const TurnData& turn,
@@ -322,16 +402,10 @@ Eigen::Matrix3d TurnResidualAlong(const TurnData& turn,
                                   const Eigen::Matrix3d& direction,
                                   Eigen::Vector2d* residual,
                                   Eigen::Vector2d* derivative) {
-  Eigen::Vector3d d_theta = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d r = derivative != nullptr
-                          ? RotationOverTurnAlong(m, turn.steps, direction, &d_theta)
-                          : RotationOverTurn(m, turn.steps, nullptr);
-  const Eigen::Vector3d carried = r.transpose() * turn.u_from;
-  if (residual != nullptr) *residual = turn.basis_to.transpose() * carried;
-  if (derivative != nullptr) {
-    *derivative = turn.basis_to.transpose() * Hat(carried) * d_theta;
-  }
-  return r;
+  const TurnCache::Along& entry = AlongAt(turn, m, direction);
+  const Eigen::Matrix<double, 2, 3> d_residual = Residual(turn, entry.rotation, residual);
+  if (derivative != nullptr) *derivative = d_residual * entry.d_theta;
+  return entry.rotation;
 }
 
 double TurnTilt(const TurnData& turn, const Eigen::Matrix3d& rotation) {

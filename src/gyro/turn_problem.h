@@ -4,6 +4,7 @@
 // angle increments and the variance of its residual.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -18,6 +19,32 @@
 #include "rotation.h"
 
 namespace mpcal::internal {
+
+/// The last evaluations of one turn at an effective matrix M: its rotation
+/// and the right perturbation per entry of M (3 × 9), or along one direction
+/// of M (3 × 1). The solver asks for the residual at a candidate M and, once
+/// it accepts the step, for the Jacobian at the same M; the evaluations
+/// before and after the solve ask at its first and last point. Two entries,
+/// so that a rejected candidate does not push out the accepted point.
+struct TurnCache {
+  struct Full {
+    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+    Eigen::Matrix<double, 3, 9> d_theta = Eigen::Matrix<double, 3, 9>::Zero();
+    bool valid = false;
+  };
+  struct Along {
+    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+    Eigen::Matrix3d direction = Eigen::Matrix3d::Zero();
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d d_theta = Eigen::Vector3d::Zero();
+    bool valid = false;
+  };
+  std::array<Full, 2> full;
+  std::array<Along, 2> along;
+  std::size_t next_full = 0;  // the least recently used entry
+  std::size_t next_along = 0;
+};
 
 struct TurnData {
   std::size_t from_position = 0;
@@ -39,6 +66,11 @@ struct TurnData {
   /// the nominal scale.
   double direction_variance_rad2 = 0.0;
   double gyro_variance_raw2s2 = 0.0;
+  /// Filled by TurnResidual and TurnResidualAlong, keyed by M alone: the
+  /// steps must not change once the turn has been evaluated. A turn is
+  /// evaluated by one thread at a time (Ceres gives each residual block to
+  /// one thread).
+  mutable TurnCache cache;
 
   double Sigma(double radps_per_unit) const;
 };
@@ -76,7 +108,10 @@ TurnProblem BuildTurnProblem(const Recording& recording,
 
 /// Residual of one turn (unwhitened, rad: the tilt components in the basis
 /// at u_to) at the effective matrix `m` applied to raw increments, and its
-/// 2 × 9 Jacobian when asked. Returns the rotation over the turn.
+/// 2 × 9 Jacobian when asked. Returns the rotation over the turn. The
+/// Jacobian is computed even when not asked (it costs little more than the
+/// rotation, which needs every sample's exponential) and kept in the turn's
+/// cache with the rotation: a second call at the same `m` reads them.
 Eigen::Matrix3d TurnResidual(const TurnData& turn,
                              const Eigen::Matrix3d& m,
                              Eigen::Vector2d* residual,
@@ -84,6 +119,7 @@ Eigen::Matrix3d TurnResidual(const TurnData& turn,
 
 /// The same residual and, when `derivative` is not null, its derivative
 /// along one direction of M (δM = `direction`): for a fit of a common scale.
+/// Cached as TurnResidual's.
 Eigen::Matrix3d TurnResidualAlong(const TurnData& turn,
                                   const Eigen::Matrix3d& m,
                                   const Eigen::Matrix3d& direction,
