@@ -13,6 +13,7 @@
 
 #include <Eigen/Geometry>
 
+#include "bias_walk.h"
 #include "gyro_observability.h"
 #include "mpcal/error.h"
 #include "mpcal/gyro.h"
@@ -393,8 +394,12 @@ GyroResult CalibrateGyroscope(const Recording& recording,
     throw Error(ErrorKind::kOption, "gyroscope options: " + problem);
   }
   const double carry_scale = CarryScale(recording, intervals, accel, options);
-  const TurnProblem problem =
-      BuildProblem(recording, intervals, accel, options, carry_scale);
+  TurnProblem problem = BuildProblem(recording, intervals, accel, options, carry_scale);
+  // The bias's random walk between the positions, which the interpolation
+  // across each turn leaves in it: in the weights, so that a gyroscope whose
+  // bias wanders weights its long turns between far-apart positions less.
+  internal::AddBiasWalk(internal::EstimateBiasWalk(problem, intervals, recording, accel),
+                        &problem);
   GyroResult result;
   result.calibration.input_units = recording.gyro_units;
   result.turns = DescribeTurns(problem);
@@ -442,7 +447,7 @@ Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const Recording& recording,
                                                std::span<const StaticInterval> intervals,
                                                const Calibration& accel,
                                                const GyroCalibration& truth) {
-  const TurnProblem problem = internal::BuildTurnProblem(
+  internal::TurnProblem problem = internal::BuildTurnProblem(
       recording,
       intervals,
       accel,
@@ -450,6 +455,8 @@ Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const Recording& recording,
       truth.g_sensitivity_radps_per_mps2 ? GSensitivity::kOn : GSensitivity::kOff,
       GyroOptions().g_sensitivity_min_f,
       truth.radps_per_unit);
+  internal::AddBiasWalk(internal::EstimateBiasWalk(problem, intervals, recording, accel),
+                        &problem);
   const double scale = truth.radps_per_unit;
   const Eigen::MatrixXd j = EvaluateTurns(problem, truth.m * scale, scale).jacobian;
   const Eigen::MatrixXd information = j.transpose() * j;
