@@ -269,6 +269,28 @@ GyroFinding TooFewTurns(std::size_t turns) {
   return few;
 }
 
+// Carrying each sample of a direction window to the window's edge by the
+// gyroscope (turn_problem.h, `carry_radps_per_unit`) takes out the hand's
+// sway but integrates the gyroscope's white noise over the window: the
+// window's mean direction then holds, per tangent component, σ² dt W/3 (the
+// mean over [0, W] of an angle random walk pinned at the edge) at each end.
+void AddCarryNoise(const Recording& recording,
+                   std::span<const StaticInterval> intervals,
+                   double window_s,
+                   TurnProblem* problem) {
+  if (!(window_s > 0.0)) return;
+  auto window = [&](const StaticInterval& in) {
+    return std::min(window_s, recording.time_s[in.end - 1] - recording.time_s[in.begin]);
+  };
+  const double var_sample = problem->noise_std_raw * problem->noise_std_raw;
+  for (TurnData& t : problem->turns) {
+    const std::size_t k = t.from_position;
+    if (k + 1 >= intervals.size()) continue;
+    t.gyro_variance_raw2s2 += var_sample * problem->sample_period_s *
+                              (window(intervals[k]) + window(intervals[k + 1])) / 3.0;
+  }
+}
+
 // The bias at every position, its mean and the mean's scatter, and G.
 void FillBias(const TurnProblem& problem, double scale, GyroCalibration* c) {
   for (const auto& b : problem.bias_raw) {
@@ -400,6 +422,9 @@ GyroResult CalibrateGyroscope(const Recording& recording,
   // bias wanders weights its long turns between far-apart positions less.
   internal::AddBiasWalk(internal::EstimateBiasWalk(problem, intervals, recording, accel),
                         &problem);
+  if (carry_scale > 0.0) {
+    AddCarryNoise(recording, intervals, options.direction_window_s, &problem);
+  }
   GyroResult result;
   result.calibration.input_units = recording.gyro_units;
   result.turns = DescribeTurns(problem);
@@ -457,6 +482,7 @@ Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const Recording& recording,
       truth.radps_per_unit);
   internal::AddBiasWalk(internal::EstimateBiasWalk(problem, intervals, recording, accel),
                         &problem);
+  AddCarryNoise(recording, intervals, GyroOptions().direction_window_s, &problem);
   const double scale = truth.radps_per_unit;
   const Eigen::MatrixXd j = EvaluateTurns(problem, truth.m * scale, scale).jacobian;
   const Eigen::MatrixXd information = j.transpose() * j;
