@@ -269,6 +269,40 @@ GyroFinding TooFewTurns(std::size_t turns) {
   return few;
 }
 
+// The gyroscope's white noise per sample (raw units): the median over the
+// positions of the RMS second difference over √6. The scatter at rest
+// (TurnProblem::noise_std_raw) also holds the hand's tremor, which is motion
+// the integration follows, not noise; the second difference passes white
+// noise (variance 6σ²) and damps slow motion. Zero with no position of 3
+// samples.
+double WhiteNoiseStd(const Recording& recording,
+                     std::span<const StaticInterval> intervals) {
+  std::vector<double> stds;
+  for (const StaticInterval& in : intervals) {
+    if (in.end - in.begin < 3) continue;
+    double sum = 0.0;
+    for (std::size_t i = in.begin + 1; i + 1 < in.end; ++i) {
+      sum += (recording.gyro_radps[i + 1] - 2.0 * recording.gyro_radps[i] +
+              recording.gyro_radps[i - 1])
+                 .squaredNorm();
+    }
+    stds.push_back(std::sqrt(sum / (18.0 * static_cast<double>(in.end - in.begin - 2))));
+  }
+  if (stds.empty()) return 0.0;
+  std::nth_element(stds.begin(), stds.begin() + stds.size() / 2, stds.end());
+  return stds[stds.size() / 2];
+}
+
+// The turns' gyroscope variance with the white noise, where the scatter at
+// rest is larger (a trembling hand): the integration over a turn follows the
+// tremor, so only the white noise is error.
+void UseWhiteNoise(double white_std_raw, TurnProblem* problem) {
+  const double scatter = problem->noise_std_raw;
+  if (!(white_std_raw > 0.0) || !(white_std_raw < scatter)) return;
+  const double ratio = (white_std_raw * white_std_raw) / (scatter * scatter);
+  for (TurnData& t : problem->turns) t.gyro_variance_raw2s2 *= ratio;
+}
+
 // Carrying each sample of a direction window to the window's edge by the
 // gyroscope (turn_problem.h, `carry_radps_per_unit`) takes out the hand's
 // sway but integrates the gyroscope's white noise over the window: the
@@ -277,12 +311,13 @@ GyroFinding TooFewTurns(std::size_t turns) {
 void AddCarryNoise(const Recording& recording,
                    std::span<const StaticInterval> intervals,
                    double window_s,
+                   double white_std_raw,
                    TurnProblem* problem) {
   if (!(window_s > 0.0)) return;
   auto window = [&](const StaticInterval& in) {
     return std::min(window_s, recording.time_s[in.end - 1] - recording.time_s[in.begin]);
   };
-  const double var_sample = problem->noise_std_raw * problem->noise_std_raw;
+  const double var_sample = white_std_raw * white_std_raw;
   for (TurnData& t : problem->turns) {
     const std::size_t k = t.from_position;
     if (k + 1 >= intervals.size()) continue;
@@ -417,13 +452,16 @@ GyroResult CalibrateGyroscope(const Recording& recording,
   }
   const double carry_scale = CarryScale(recording, intervals, accel, options);
   TurnProblem problem = BuildProblem(recording, intervals, accel, options, carry_scale);
+  const double white =
+      std::min(WhiteNoiseStd(recording, intervals), problem.noise_std_raw);
+  UseWhiteNoise(white, &problem);
   // The bias's random walk between the positions, which the interpolation
   // across each turn leaves in it: in the weights, so that a gyroscope whose
   // bias wanders weights its long turns between far-apart positions less.
   internal::AddBiasWalk(internal::EstimateBiasWalk(problem, intervals, recording, accel),
                         &problem);
   if (carry_scale > 0.0) {
-    AddCarryNoise(recording, intervals, options.direction_window_s, &problem);
+    AddCarryNoise(recording, intervals, options.direction_window_s, white, &problem);
   }
   GyroResult result;
   result.calibration.input_units = recording.gyro_units;
@@ -480,9 +518,12 @@ Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const Recording& recording,
       truth.g_sensitivity_radps_per_mps2 ? GSensitivity::kOn : GSensitivity::kOff,
       GyroOptions().g_sensitivity_min_f,
       truth.radps_per_unit);
+  const double white =
+      std::min(WhiteNoiseStd(recording, intervals), problem.noise_std_raw);
+  UseWhiteNoise(white, &problem);
   internal::AddBiasWalk(internal::EstimateBiasWalk(problem, intervals, recording, accel),
                         &problem);
-  AddCarryNoise(recording, intervals, GyroOptions().direction_window_s, &problem);
+  AddCarryNoise(recording, intervals, GyroOptions().direction_window_s, white, &problem);
   const double scale = truth.radps_per_unit;
   const Eigen::MatrixXd j = EvaluateTurns(problem, truth.m * scale, scale).jacobian;
   const Eigen::MatrixXd information = j.transpose() * j;
