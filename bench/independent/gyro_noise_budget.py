@@ -17,7 +17,8 @@ replaying it with one part at a time:
   dirs     the accelerometer's white noise in the two directions
 
 and each part's mean square over the turns is compared with the variance
-that gyro_bound.turn_variances (and mpcal's weights: white + dirs) give it.
+that gyro_bound.turn_variances gives it (and mpcal's weights before the walk
+was added to them: white + dirs).
 Prints, per part, mean(r^2)/mean(model var) (1.0: the model holds that
 part), and chi2/dof of the full residual under both models.
 
@@ -119,7 +120,7 @@ def model_parts(sim, truth):
     parts['walk'] = full - no_walk
     parts['white'] = no_walk - dirs
     parts['dirs'] = dirs
-    parts['mpcal'] = no_walk  # mpcal's weights: white + directions, no walk
+    parts['mpcal'] = no_walk  # mpcal's weights before gyrobound: no walk
     return parts
 
 
@@ -151,7 +152,7 @@ def main():
         print('%-6s mean r^2 %.3e  bound var %s  ratio %s' % (
             name, np.mean(cat[name]), '%.3e' % np.mean(model) if model is not None else '   -     ',
             '%.3f' % ratio if model is not None else '  -'))
-    print('all: chi2/dof under the bound\'s variances %.3f, under mpcal\'s (no walk) %.3f'
+    print('all: chi2/dof under the bound\'s variances %.3f, without the walk %.3f'
           % (np.mean(cat['all'] / cat['var_all']), np.mean(cat['all'] / cat['var_mpcal'])))
 
 
