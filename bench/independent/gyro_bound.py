@@ -138,6 +138,22 @@ def gyro_bound(sim, truth):
     return np.linalg.inv(info)
 
 
+def with_detected_segments(sim, intervals):
+    """A view of `sim` whose static positions are the intervals a detector
+    found (mpcal detect --json: begin, end one past, in samples) and whose
+    turns join them, from the last sample of one to the first of the next:
+    the segments an estimator that finds the positions from the data works
+    on. The bound on these is the bound given that segmentation."""
+    segs = []
+    for k, iv in enumerate(intervals):
+        segs.append({'kind': 'static', 'k': k, 'i0': iv['begin'], 'i1': iv['end'] - 1})
+        if k + 1 < len(intervals):
+            segs.append({'kind': 'turn', 'k': k, 'i0': iv['end'] - 1, 'i1': intervals[k + 1]['begin']})
+    view = dict(sim)
+    view['segs'] = segs
+    return view
+
+
 def residual_rms_deg(sim):
     """RMS tilt (deg) of the noise-free integration at the truth: the scheme's own error."""
     turns = _turns(sim)
