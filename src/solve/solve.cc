@@ -107,10 +107,13 @@ SolveResult Solve(std::span<const PositionObservation> positions,
   CrossValidate(positions, noise, options, dof, *fit, result);
   SetCovariance(dof, *fit, result);
   if (options.split_half_check) {
-    // Halves with a drifting bias report it at the same time as the whole.
+    // The halves fit the model the whole chose: with a drifting bias,
+    // reported at the same time as the whole's, or a constant one (a half
+    // choosing a drift by chance would compare two different models).
     SolveOptions split_options = options;
     split_options.bias_reference_time_s = reference_s;
     split_options.force_bias_drift = result.bias_drift.has_value();
+    split_options.consider_bias_drift = result.bias_drift.has_value();
     // Halves too small to estimate the scatter take the whole session's.
     split_options.known_position_scatter_mps2 = result.position_scatter_mps2;
     WidenBySplitHalves(positions, split_options, result);
