@@ -106,12 +106,13 @@ bool Study(const mpcal::bench::Envelope& envelope, int sessions, std::uint64_t s
   fmt::print(
       "bias drift chosen (test at 1 %) in {} of {} sessions\n", drift_chosen, done);
   fmt::print(
-      "split-half check widened the 1σ in {} of {} sessions{} (reported 1σ/bound "
-      "there up to {:.2f}); the range above is of the other {}\n",
+      "split-half check widened the 1σ in {} of {} sessions{}{}; the range above is "
+      "of the other {}\n",
       widened,
       done,
       drifting ? std::string() : fmt::format(" (1 % expected: {:.1f})", 0.01 * done),
-      widened_max,
+      widened > 0 ? fmt::format(" (reported 1σ/bound there up to {:.2f})", widened_max)
+                  : std::string(),
       done - widened);
   fmt::print("RMS z over all sessions and parameters {:.3f} (bar: 0.8-1.25)\n",
              overall_z);
