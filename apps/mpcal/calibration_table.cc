@@ -1,5 +1,6 @@
 #include "calibration_table.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -57,11 +58,17 @@ std::string FormatSplitHalf(const SplitHalfSummary& check) {
         c.positions_second,
         c.rms_z,
         1.0 / std::sqrt(2.0 * c.dof));
+    // Each determined split is tested at its share of the check's significance.
+    const auto splits = std::count_if(check.comparisons.begin(),
+                                      check.comparisons.end(),
+                                      [](const auto& s) { return s.determined; });
     out += c.disagree ? fmt::format(
                             "the halves DISAGREE beyond chance (chi-square p = {:.2g} < "
-                            "{:g})\n",
+                            "{:g}, the check's {:g} shared by {} splits)\n",
                             c.p_value,
-                            check.significance)
+                            check.significance / static_cast<double>(splits),
+                            check.significance,
+                            splits)
                       : fmt::format("consistent (chi-square p = {:.2g})\n", c.p_value);
     out += "  z:";
     for (std::size_t i = 0; i < c.z.size() && i < 9; ++i) {

@@ -174,14 +174,14 @@ namespace {
 
 // The test of the drift's three parameters. When the drifting fit's residuals
 // show no scatter beyond the sensor noise (its scatter test at 1 % did not
-// fire, or the scatter is known), the weights are known — each position's
+// fire), the weights are known — each position's
 // noise, measured from its own thousands of samples — and the likelihood
 // ratio, the drop in χ² under those weights, is χ² with 3 degrees of
 // freedom. Otherwise the weights' level is estimated from the residuals and
 // the F test accounts for it, both χ² with the constant fit's weights (its
-// noise and scatter). Only the F test at few redundant positions would
-// miss most drifts: F(3, 2) rejects at 1 % beyond 99, χ²(3)/3 beyond 3.8;
-// a missed drift goes into the scatter and the 1σ of every parameter.
+// noise and scatter). The F test alone missed most drifts at few redundant
+// positions (F(3, 2) rejects at 1 % beyond 99, χ²(3)/3 beyond 3.8), and a
+// missed drift goes into the scatter and the 1σ of every parameter.
 std::optional<double> DriftPValue(const Fit& constant,
                                   const Fit& drifting,
                                   int redundancy) {

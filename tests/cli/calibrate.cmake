@@ -16,6 +16,20 @@ mpcal_cli_test(calibrate_xsens_split_half EXIT 0
 mpcal_cli_test(calibrate_ferraris_split_half_not_possible EXIT 0
   MATCH "split-half \\(by time, 5 \\+ 5 positions\\): not possible"
   ARGS calibrate ${_ferraris} --rate 102.4 --model bias-scale-6 -o calib.json)
+# A bumped stretch: 4 mg on x from 246 s to 400 s of a 40-position session.
+# The halves by time disagree; calibrate says so, at the split's share of the
+# check's 1 %, widens every 1σ, and stores the widening in the file.
+add_test(NAME cli.calibrate_bumped_stretch_widens
+  COMMAND sh -c "set -e; rm -rf bumped && mkdir bumped && cd bumped
+    \"$0\" simulate static --preset mti-g --seed 3 --positions 40 -o s.csv
+    awk -F, 'NR == 1 { print; next } { if ($1 > 246 && $1 < 400) $2 += 0.004; print $1 \",\" $2 \",\" $3 \",\" $4 }' s.csv > bumped.csv
+    \"$0\" calibrate bumped.csv -o c.json > out.txt 2>&1
+    grep -q 'split-half (by time, 21 + 20 positions): RMS z [0-9.]* (honest 1σ: 1 ± 0.24); the halves DISAGREE beyond chance (chi-square p = .* < 0.005, the check.s 0.01 shared by 2 splits)' out.txt
+    grep -q '^every 1σ above is widened by [2-9]' out.txt
+    grep -q 'every 1σ is widened by' out.txt
+    grep -q '\"widening\": [2-9]' c.json"
+  $<TARGET_FILE:mpcal_cli>)
+set_tests_properties(cli.calibrate_bumped_stretch_widens PROPERTIES LABELS cli)
 mpcal_cli_test(calibrate_xsens_read_as_mps2 EXIT 1
   MATCH "look like raw ADC counts: add --units counts" ABSENT calib.json
   ARGS calibrate ${_xsens} --gravity 9.81744 -o calib.json)
