@@ -1,6 +1,5 @@
 #include "calibration_table.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -58,17 +57,14 @@ std::string FormatSplitHalf(const SplitHalfSummary& check) {
         c.positions_second,
         c.rms_z,
         1.0 / std::sqrt(2.0 * c.dof));
-    // Each determined split is tested at its share of the check's significance.
-    const auto splits = std::count_if(check.comparisons.begin(),
-                                      check.comparisons.end(),
-                                      [](const auto& s) { return s.determined; });
+    const double per_split = PerSplitSignificance(check.comparisons, check.significance);
     out += c.disagree ? fmt::format(
                             "the halves DISAGREE beyond chance (chi-square p = {:.2g} < "
-                            "{:g}, the check's {:g} shared by {} splits)\n",
+                            "{:g}, the check's {:g} shared by {:g} splits)\n",
                             c.p_value,
-                            check.significance / static_cast<double>(splits),
+                            per_split,
                             check.significance,
-                            splits)
+                            check.significance / per_split)
                       : fmt::format("consistent (chi-square p = {:.2g})\n", c.p_value);
     out += "  z:";
     for (std::size_t i = 0; i < c.z.size() && i < 9; ++i) {

@@ -4,6 +4,8 @@
 /// fit. Plain data; reading and writing the file is in calibration_file.h.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -101,6 +103,16 @@ struct SplitHalfComparison {
   /// chance.
   bool disagree = false;
 };
+
+/// The significance each determined split of a check is tested at: the
+/// check's `significance` shared among them (Bonferroni), so that it stays
+/// the rate at which a session with honest 1σ has any split disagree.
+inline double PerSplitSignificance(const std::vector<SplitHalfComparison>& comparisons,
+                                   double significance) {
+  const auto determined = std::count_if(
+      comparisons.begin(), comparisons.end(), [](const auto& c) { return c.determined; });
+  return significance / static_cast<double>(std::max<std::ptrdiff_t>(determined, 1));
+}
 
 /// The split-half check of one calibration (`"fit.split_half"`).
 struct SplitHalfSummary {

@@ -160,12 +160,11 @@ double JudgeSplits(std::vector<SplitHalfComparison>& comparisons, double signifi
   // (Bonferroni: each split at significance/n). Two splits tested at the full
   // significance each would widen twice as many honest sessions, each by at
   // least √(χ²₀.₉₉(9)/9) = 1.55.
-  const auto determined = std::count_if(
-      comparisons.begin(), comparisons.end(), [](const auto& c) { return c.determined; });
+  const double per_split = PerSplitSignificance(comparisons, significance);
   double widening = 1.0;
   for (SplitHalfComparison& c : comparisons) {
     if (!c.determined) continue;
-    c.disagree = c.p_value < significance / static_cast<double>(determined);
+    c.disagree = c.p_value < per_split;
     if (c.disagree) widening = std::max(widening, std::sqrt(c.chi2 / c.dof));
   }
   return widening;
