@@ -1,5 +1,6 @@
 #include "gyro_table.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -128,6 +129,17 @@ std::string FormatGyroSummary(const GyroResult& r) {
       f.noise_std_radps * kDegPerRad,
       r.calibration.g_sensitivity_radps_per_mps2 ? "modelled" : "not modelled",
       r.g_sensitivity_f);
+  const GyroDirections& d = r.directions;
+  if (d.carry_noise_rad > 0.0) {
+    out += fmt::format(
+        "gyroscope directions: {} (the hand's sway there {:.3f} deg, the gyroscope's "
+        "noise over the window {:.3f} deg)\n",
+        d.carried ? "each sample of the window next to a turn carried to its edge by the "
+                    "gyroscope"
+                  : "the accelerometer's plain mean over the window next to a turn",
+        d.sway_rad * kDegPerRad,
+        d.carry_noise_rad * kDegPerRad);
+  }
   if (!r.converged()) out += fmt::format("gyroscope solver: {}\n", r.message);
   return out;
 }
@@ -188,7 +200,24 @@ struct RepeatRow {
   std::vector<double> sigmas;  // empty: a trial without 1σ
 };
 
+// Each trial's nominal scale over the first's. A calibration of raw counts
+// finds its own nominal rad/s per count, and M is relative to it: the same
+// gyroscope gives M = 1.003 at one nominal scale and 0.998 at another 0.5 %
+// larger. The trials are compared at the first one's nominal scale: M k / k₁
+// and the bias in counts times k₁.
+std::vector<double> NominalRatios(const std::vector<const GyroCalibration*>& g) {
+  std::vector<double> ratios;
+  for (const GyroCalibration* t : g) {
+    const bool counts = t->input_units == GyroUnits::kCounts &&
+                        g.front()->input_units == GyroUnits::kCounts &&
+                        t->radps_per_unit > 0.0 && g.front()->radps_per_unit > 0.0;
+    ratios.push_back(counts ? t->radps_per_unit / g.front()->radps_per_unit : 1.0);
+  }
+  return ratios;
+}
+
 std::vector<RepeatRow> GyroRepeatRows(const std::vector<const GyroCalibration*>& g) {
+  const std::vector<double> ratios = NominalRatios(g);
   std::vector<RepeatRow> rows;
   for (int p = 0; p < 9; ++p) {
     const int r = p / 3;
@@ -198,17 +227,21 @@ std::vector<RepeatRow> GyroRepeatRows(const std::vector<const GyroCalibration*>&
                        : fmt::format("misalignment m_{}{}", kAxis[r], kAxis[c]);
     row.unit = r == c ? "ppm" : "mrad";
     const double factor = r == c ? 1e6 : 1e3;
-    for (const GyroCalibration* t : g) {
-      row.values.push_back((t->m(r, c) - (r == c ? 1.0 : 0.0)) * factor);
-      if (t->m_covariance) row.sigmas.push_back(t->MStd()(r, c) * factor);
+    for (std::size_t i = 0; i < g.size(); ++i) {
+      const GyroCalibration& t = *g[i];
+      row.values.push_back((t.m(r, c) * ratios[i] - (r == c ? 1.0 : 0.0)) * factor);
+      if (t.m_covariance) row.sigmas.push_back(t.MStd()(r, c) * ratios[i] * factor);
     }
     rows.push_back(row);
   }
   for (int i = 0; i < 3; ++i) {
     RepeatRow row{fmt::format("bias {} (mean)", kAxis[i]), "deg/s", {}, {}};
-    for (const GyroCalibration* t : g) {
-      row.values.push_back(t->bias_radps[i] * kDegPerRad);
-      if (t->bias_std_radps) row.sigmas.push_back((*t->bias_std_radps)[i] * kDegPerRad);
+    for (std::size_t j = 0; j < g.size(); ++j) {
+      const GyroCalibration& t = *g[j];
+      row.values.push_back(t.bias_radps[i] / ratios[j] * kDegPerRad);
+      if (t.bias_std_radps) {
+        row.sigmas.push_back((*t.bias_std_radps)[i] / ratios[j] * kDegPerRad);
+      }
     }
     rows.push_back(row);
   }
@@ -253,6 +286,13 @@ std::string FormatGyroRepeatTable(std::span<const Calibration> trials,
   if (g.size() < 2) return "";
   std::string out =
       fmt::format("\ngyroscope over {} trials (ω = M (raw − b)):\n", g.size());
+  const std::vector<double> ratios = NominalRatios(g);
+  if (std::any_of(ratios.begin(), ratios.end(), [](double r) { return r != 1.0; })) {
+    out += fmt::format(
+        "(raw counts: every trial at trial 1's nominal {:.6g} rad/s per count, M times "
+        "its own nominal scale over that one, the bias in counts times it)\n",
+        g.front()->radps_per_unit);
+  }
   out += fmt::format("{:<22} {:<6}", "parameter", "unit");
   for (std::size_t i = 0; i < g.size(); ++i)
     out += fmt::format(" {:>18}", fmt::format("trial {}", i + 1));

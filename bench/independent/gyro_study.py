@@ -19,9 +19,11 @@ both define it):
                inflation (mpcal's own bound at the estimate), for comparison.
   diagnostic = the error over the same bound computed on the static
                positions `mpcal detect` found instead of the generator's
-               (detection trims ~0.5 s of settling at each end, so its turns
-               are ~1 s longer and hold more white noise): how much of the
-               gap to the bound is the segmentation.
+               (detection trims ~0.8 s of settling at each end, so turns
+               between its positions are ~1 s longer and hold more white
+               noise). mpcal's gyroscope extends the positions to the motion
+               (src/gyro/turn_edges.h), so its error can fall below this one:
+               it shows what the segmentation alone would cost.
 
 PASS when every session calibrated its gyroscope, the RMS of z over all
 entries is within 0.8 - 1.25 and, with --tremor 0, the RMS of error/CRB is at
@@ -143,8 +145,8 @@ def main():
           'median variance factor %.2f; %s'
           % (len(done), len(seeds), rms_z, rms_b, rms(all_o), worst, after, vf, 'PASS' if ok else 'FAIL'))
     if det:
-        print('diagnostic: RMS error over the bound on the positions mpcal detected (turns from the '
-              'last sample of one to the first of the next, %d entries) %.3f' % (len(det), rms(det)))
+        print('diagnostic: RMS error over the bound on the positions mpcal detect finds (turns from '
+              'the last sample of one to the first of the next, %d entries) %.3f' % (len(det), rms(det)))
     return 0 if ok else 1
 
 

@@ -9,7 +9,8 @@ counts: bias in the log's units b/k, gain per axis (1 + s)/k, angles as they
 are, with k the half's `input.mps2_per_unit`. With honest 1σ and independent
 halves z = (p1 - p2)/sqrt(σ1² + σ2²) is standard normal, so the RMS of z over
 the parameters is about 1 (spread about ±0.24 for 9 values, ±0.29 for 6).
-Then `mpcal repeat` on the two halves: nothing may be flagged at 1 %.
+Then `mpcal repeat` on the two halves: nothing may be flagged at 1 %. The
+gyroscope of an IMU session the same way, over the 9 entries of its matrix.
 
   split_half.py MPCAL_BINARY REAL_DATA_DIR [--workdir DIR]
 
@@ -37,6 +38,18 @@ RECORDINGS = [
     ('xsens', 'xsens-multiposition/xsens_acc.mat', 25587,
      ['--units', 'counts', '--gravity', '9.81744'], 9),
 ]
+
+# The gyroscope: name, accelerometer and gyroscope files (cut at the same
+# row), rows in the first half, calibrate options. Each half finds its own
+# nominal rad/s per count, and M is relative to it: the halves are compared
+# as the effective matrix k M (rad/s per count), which is what the readings
+# are multiplied by.
+IMU_RECORDINGS = [
+    ('xsens gyroscope', 'xsens-multiposition/xsens_acc.mat',
+     'xsens-multiposition/xsens_gyro.mat', 25587,
+     ['--units', 'counts', '--gyro-units', 'counts', '--gravity', '9.81744']),
+]
+GYRO_NAMES = ['m_xx', 'm_xy', 'm_xz', 'm_yx', 'm_yy', 'm_yz', 'm_zx', 'm_zy', 'm_zz']
 
 
 def split(path, first_rows, directory):
@@ -113,6 +126,43 @@ def study(mpcal, data_dir, name, relative, first_rows, options, parameters, dire
     return verdict
 
 
+def gyro_study(mpcal, data_dir, name, accel, gyro, first_rows, options, directory):
+    """The gyroscope's M from the two halves of an IMU session, z per entry."""
+    accel_halves = split(os.path.join(data_dir, accel), first_rows, directory)
+    gyro_halves = split(os.path.join(data_dir, gyro), first_rows, directory)
+    fits = []
+    for i in range(2):
+        out = os.path.join(directory, f'{name.replace(" ", "_")}_half{i + 1}.json')
+        subprocess.run([mpcal, 'calibrate', accel_halves[i], '--gyro-log', gyro_halves[i],
+                        *options, '-o', out], check=True, stdout=subprocess.DEVNULL,
+                       stderr=subprocess.DEVNULL)
+        with open(out) as f:
+            fits.append(json.load(f)['gyroscope'])
+    k = [g['input'].get('radps_per_unit', 1.0) for g in fits]
+    z = [(k[0] * fits[0]['m'][i] - k[1] * fits[1]['m'][i]) /
+         math.hypot(k[0] * fits[0]['std']['m'][i], k[1] * fits[1]['std']['m'][i])
+         for i in range(9)]
+    rms = math.sqrt(sum(v * v for v in z) / len(z))
+    repeat = subprocess.run(
+        [mpcal, 'repeat', *[os.path.join(directory, f'{name.replace(" ", "_")}_half{i}.json')
+                            for i in (1, 2)]],
+        stdout=subprocess.PIPE, text=True, check=True).stdout
+    gyro_part = repeat[repeat.find('gyroscope over'):]
+    flagged = [line.split('  ')[0] for line in gyro_part.splitlines() if 'changed (p' in line]
+    print(f'{name}: {accel} + {gyro} cut after {first_rows} rows; {options_text(options)}')
+    for i, g in enumerate(fits):
+        fit = g['fit']
+        print(f'  half {i + 1}: {fit["turns"]} turns, variance factor {fit["variance_factor"]:.3g}, '
+              f'turn residual {math.degrees(fit["residual_rms_after_rad"]):.3f} deg, '
+              f'nominal {k[i]:.6g} rad/s per count')
+    print('  ' + '  '.join(f'{GYRO_NAMES[i]} {z[i]:+.2f}' for i in range(9)))
+    verdict = rms <= RMS_Z_BAR and not flagged
+    print(f'  split-half RMS z {rms:.3f} over 9 entries of k M (bar: <= {RMS_Z_BAR}); '
+          f'repeat flags at 1 %: {", ".join(flagged) if flagged else "none"}; '
+          f'{"PASS" if verdict else "FAIL"}')
+    return verdict
+
+
 def options_text(options):
     return ' '.join(options)
 
@@ -128,6 +178,8 @@ def main():
         os.makedirs(directory, exist_ok=True)
         results = [study(args.mpcal, args.data_dir, *recording, directory)
                    for recording in RECORDINGS]
+        results += [gyro_study(args.mpcal, args.data_dir, *recording, directory)
+                    for recording in IMU_RECORDINGS]
     print('PASS' if all(results) else 'FAIL')
     return 0 if all(results) else 1
 

@@ -7,23 +7,29 @@
 ///
 /// - Turns: the stretches between consecutive static positions of the
 ///   detection, integrated from the last sample of position k to the first
-///   of position k+1.
+///   of position k+1, where the gyroscope and the accelerometer show the
+///   sensor at rest up to the motion (detection trims about 0.8 s of each
+///   position's ends for the accelerometer's mean; a turn integrated over
+///   that still time would only gather noise).
 /// - Bias: the mean reading at every static position (bias plus the Earth
 ///   rate projected on the body there), interpolated linearly in time
 ///   between the centres of the positions, so that a bias that drifts
 ///   during the session does not leak into M.
 /// - Integration: the exact exponential map, R = Π exp([M w_i]×), with w_i
-///   the bias-free reading averaged over each sample interval times its
-///   length (the recorded sample times, not a nominal rate).
+///   the bias-free rate integrated over each sample interval by the cubic
+///   through the four readings around it (the recorded sample times, not a
+///   nominal rate), with the two-sample coning term.
 /// - Residual: with u_k the unit specific force at position k (body frame =
 ///   the accelerometer's orthogonal frame, by its calibration), the
 ///   predicted direction after the turn is Rᵀ u_k; the residual is its tilt
 ///   from the measured u_{k+1}, two components in the plane perpendicular to
 ///   u_{k+1} (a rotation about gravity is invisible).
 /// - Weights: per turn, the noise of both measured directions (accelerometer
-///   noise of the means over g), the integrated gyroscope white noise
-///   (σ·√(period·duration), σ from the positions' sample scatter) and the
-///   uncertainty of the interpolated bias; the covariance is scaled up by the
+///   noise of the means over g, and the hand's sway or the gyroscope's
+///   noise over the direction windows, see GyroDirections), the integrated
+///   gyroscope white noise (σ·√(period·duration), σ from the positions'
+///   second differences), the uncertainty of the interpolated bias and the
+///   bias's random walk across the turn; the covariance is scaled up by the
 ///   variance factor as the accelerometer's is ((10 + χ²)/(10 + dof)).
 #pragma once
 
@@ -139,6 +145,24 @@ struct GyroFinding {
 enum class GyroStatus { kConverged, kNoConvergence, kUndetermined };
 std::string_view ToString(GyroStatus status);
 
+/// Which measure of the gravity directions at the turns' edges the fit
+/// used, and why. The hand sways while it holds a position: the plain mean
+/// of a direction window then errs by the sway's angle, while the mean with
+/// each sample carried to the edge by the gyroscope errs by the gyroscope's
+/// noise integrated over the window. The two measures' difference holds
+/// both; the one expected to err less is used, and its error is in the
+/// turns' weights.
+struct GyroDirections {
+  /// The carried mean (true) or the plain mean (false).
+  bool carried = false;
+  /// Per tangent component at one edge (rad, 1σ): the sway's error of the
+  /// plain mean (estimated from the two measures' differences, 0 when they
+  /// differ no more than the gyroscope's noise explains) and the carried
+  /// mean's error from the gyroscope's noise (mean over the edges).
+  double sway_rad = 0.0;
+  double carry_noise_rad = 0.0;
+};
+
 struct GyroResult {
   GyroStatus status = GyroStatus::kUndetermined;
   /// The solver's own message (for kNoConvergence).
@@ -157,6 +181,8 @@ struct GyroResult {
   /// (0 when not computed); calibration.g_sensitivity_radps_per_mps2 is set
   /// when the model kept it.
   double g_sensitivity_f = 0.0;
+  /// The directions' measure (see GyroDirections).
+  GyroDirections directions;
 
   bool converged() const { return status == GyroStatus::kConverged; }
 };

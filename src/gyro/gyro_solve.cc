@@ -13,12 +13,12 @@
 
 #include <Eigen/Geometry>
 
-#include "bias_walk.h"
 #include "gyro_observability.h"
 #include "mpcal/error.h"
 #include "mpcal/gyro.h"
 #include "rotation.h"
 #include "turn_problem.h"
+#include "turn_weights.h"
 
 namespace mpcal {
 namespace {
@@ -269,63 +269,6 @@ GyroFinding TooFewTurns(std::size_t turns) {
   return few;
 }
 
-// The gyroscope's white noise per sample (raw units): the median over the
-// positions of the RMS second difference over √6. The scatter at rest
-// (TurnProblem::noise_std_raw) also holds the hand's tremor, which is motion
-// the integration follows, not noise; the second difference passes white
-// noise (variance 6σ²) and damps slow motion. Zero with no position of 3
-// samples.
-double WhiteNoiseStd(const Recording& recording,
-                     std::span<const StaticInterval> intervals) {
-  std::vector<double> stds;
-  for (const StaticInterval& in : intervals) {
-    if (in.end - in.begin < 3) continue;
-    double sum = 0.0;
-    for (std::size_t i = in.begin + 1; i + 1 < in.end; ++i) {
-      sum += (recording.gyro_radps[i + 1] - 2.0 * recording.gyro_radps[i] +
-              recording.gyro_radps[i - 1])
-                 .squaredNorm();
-    }
-    stds.push_back(std::sqrt(sum / (18.0 * static_cast<double>(in.end - in.begin - 2))));
-  }
-  if (stds.empty()) return 0.0;
-  std::nth_element(stds.begin(), stds.begin() + stds.size() / 2, stds.end());
-  return stds[stds.size() / 2];
-}
-
-// The turns' gyroscope variance with the white noise, where the scatter at
-// rest is larger (a trembling hand): the integration over a turn follows the
-// tremor, so only the white noise is error.
-void UseWhiteNoise(double white_std_raw, TurnProblem* problem) {
-  const double scatter = problem->noise_std_raw;
-  if (!(white_std_raw > 0.0) || !(white_std_raw < scatter)) return;
-  const double ratio = (white_std_raw * white_std_raw) / (scatter * scatter);
-  for (TurnData& t : problem->turns) t.gyro_variance_raw2s2 *= ratio;
-}
-
-// Carrying each sample of a direction window to the window's edge by the
-// gyroscope (turn_problem.h, `carry_radps_per_unit`) takes out the hand's
-// sway but integrates the gyroscope's white noise over the window: the
-// window's mean direction then holds, per tangent component, σ² dt W/3 (the
-// mean over [0, W] of an angle random walk pinned at the edge) at each end.
-void AddCarryNoise(const Recording& recording,
-                   std::span<const StaticInterval> intervals,
-                   double window_s,
-                   double white_std_raw,
-                   TurnProblem* problem) {
-  if (!(window_s > 0.0)) return;
-  auto window = [&](const StaticInterval& in) {
-    return std::min(window_s, recording.time_s[in.end - 1] - recording.time_s[in.begin]);
-  };
-  const double var_sample = white_std_raw * white_std_raw;
-  for (TurnData& t : problem->turns) {
-    const std::size_t k = t.from_position;
-    if (k + 1 >= intervals.size()) continue;
-    t.gyro_variance_raw2s2 += var_sample * problem->sample_period_s *
-                              (window(intervals[k]) + window(intervals[k + 1])) / 3.0;
-  }
-}
-
 // The bias at every position, its mean and the mean's scatter, and G.
 void FillBias(const TurnProblem& problem, double scale, GyroCalibration* c) {
   for (const auto& b : problem.bias_raw) {
@@ -452,18 +395,9 @@ GyroResult CalibrateGyroscope(const Recording& recording,
   }
   const double carry_scale = CarryScale(recording, intervals, accel, options);
   TurnProblem problem = BuildProblem(recording, intervals, accel, options, carry_scale);
-  const double white =
-      std::min(WhiteNoiseStd(recording, intervals), problem.noise_std_raw);
-  UseWhiteNoise(white, &problem);
-  // The bias's random walk between the positions, which the interpolation
-  // across each turn leaves in it: in the weights, so that a gyroscope whose
-  // bias wanders weights its long turns between far-apart positions less.
-  internal::AddBiasWalk(internal::EstimateBiasWalk(problem, intervals, recording, accel),
-                        &problem);
-  if (carry_scale > 0.0) {
-    AddCarryNoise(recording, intervals, options.direction_window_s, white, &problem);
-  }
   GyroResult result;
+  result.directions =
+      internal::WeighTurns(recording, intervals, accel, carry_scale, &problem);
   result.calibration.input_units = recording.gyro_units;
   result.turns = DescribeTurns(problem);
   if (problem.turns.size() < kMinTurns) {
@@ -518,12 +452,7 @@ Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const Recording& recording,
       truth.g_sensitivity_radps_per_mps2 ? GSensitivity::kOn : GSensitivity::kOff,
       GyroOptions().g_sensitivity_min_f,
       truth.radps_per_unit);
-  const double white =
-      std::min(WhiteNoiseStd(recording, intervals), problem.noise_std_raw);
-  UseWhiteNoise(white, &problem);
-  internal::AddBiasWalk(internal::EstimateBiasWalk(problem, intervals, recording, accel),
-                        &problem);
-  AddCarryNoise(recording, intervals, GyroOptions().direction_window_s, white, &problem);
+  internal::WeighTurns(recording, intervals, accel, truth.radps_per_unit, &problem);
   const double scale = truth.radps_per_unit;
   const Eigen::MatrixXd j = EvaluateTurns(problem, truth.m * scale, scale).jacobian;
   const Eigen::MatrixXd information = j.transpose() * j;

@@ -6,6 +6,7 @@
 #include "mpcal/gyro.h"
 #include "rotation.h"
 #include "turn_problem.h"
+#include "turn_weights.h"
 
 namespace mpcal {
 
@@ -15,7 +16,7 @@ std::vector<GyroTurn> ScoreGyroTurns(const Recording& recording,
                                      const GyroCalibration& gyro) {
   const double scale = gyro.radps_per_unit > 0.0 ? gyro.radps_per_unit : 1.0;
   const GyroOptions defaults;
-  const internal::TurnProblem problem = internal::BuildTurnProblem(
+  internal::TurnProblem problem = internal::BuildTurnProblem(
       recording,
       intervals,
       accel,
@@ -23,6 +24,8 @@ std::vector<GyroTurn> ScoreGyroTurns(const Recording& recording,
       gyro.g_sensitivity_radps_per_mps2 ? GSensitivity::kOn : GSensitivity::kOff,
       defaults.g_sensitivity_min_f,
       scale);
+  // The same directions and weights as the fit chose (gyro_solve.cc).
+  internal::WeighTurns(recording, intervals, accel, scale, &problem);
   const Eigen::Matrix3d nominal = scale * Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d calibrated = scale * gyro.m;
   std::vector<GyroTurn> turns;

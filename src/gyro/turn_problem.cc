@@ -10,6 +10,7 @@
 
 #include "mpcal/error.h"
 #include "rotation.h"
+#include "turn_edges.h"
 
 namespace mpcal::internal {
 namespace {
@@ -71,19 +72,21 @@ PositionGyro GyroAt(const Recording& rec, const StaticInterval& in) {
 }
 
 // The direction over `window_s` at the end (or start) of a position, in the
-// body frame of its last (first) sample, and the variance of each of its
-// tangent components added to `*variance`. The hand sways slowly while it
-// holds a position; with `radps_per_unit` > 0 each sample's specific force is
-// carried to that sample by the gyroscope (nominal scale, the position's
-// bias), so the mean is the direction where the turn's integration starts.
-Eigen::Vector3d EdgeDirection(const Recording& rec,
-                              const StaticInterval& in,
-                              const Calibration& accel,
-                              double window_s,
-                              bool at_end,
-                              const Eigen::Vector3d& gyro_bias,
-                              double radps_per_unit,
-                              double* variance) {
+// body frame of its last (first) sample, both as the plain mean of the
+// corrected readings and with each sample's specific force carried to the
+// edge by the gyroscope (nominal scale `radps_per_unit`, the position's
+// bias): the hand sways slowly while it holds a position, and the carried
+// mean follows it, at the price of the gyroscope's noise over the window
+// (turn_weights.h chooses). Adds the variance of each tangent component of
+// the accelerometer's mean to `*variance`.
+EdgeDirections EdgeDirection(const Recording& rec,
+                             const StaticInterval& in,
+                             const Calibration& accel,
+                             double window_s,
+                             bool at_end,
+                             const Eigen::Vector3d& gyro_bias,
+                             double radps_per_unit,
+                             double* variance) {
   const double edge_s =
       at_end ? rec.time_s[in.end - 1] - window_s : rec.time_s[in.begin] + window_s;
   std::size_t first = in.begin;
@@ -93,7 +96,8 @@ Eigen::Vector3d EdgeDirection(const Recording& rec,
   } else {
     while (last - 1 > first && rec.time_s[last - 1] > edge_s) --last;
   }
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Vector3d carried = Eigen::Vector3d::Zero();
+  Eigen::Vector3d still = Eigen::Vector3d::Zero();
   const AffineCorrection correct(accel);
   const bool carry = radps_per_unit > 0.0 && !rec.gyro_radps.empty();
   auto step = [&](std::size_t i) {  // rotation from sample i to i + 1
@@ -105,19 +109,24 @@ Eigen::Vector3d EdgeDirection(const Recording& rec,
   if (at_end) {
     for (std::size_t i = last; i-- > first;) {  // r = R_{i, anchor}
       if (carry && i + 1 < last) r = step(i) * r;
-      sum += r.transpose() * correct(rec.accel[i]);
+      const Eigen::Vector3d f = correct(rec.accel[i]);
+      carried += r.transpose() * f;
+      still += f;
     }
   } else {
     for (std::size_t i = first; i < last; ++i) {  // r = R_{anchor, i}
       if (carry && i > first) r = r * step(i - 1);
-      sum += r * correct(rec.accel[i]);
+      const Eigen::Vector3d f = correct(rec.accel[i]);
+      carried += r * f;
+      still += f;
     }
   }
   const double n = static_cast<double>(last - first);
   const Eigen::Vector3d std_mps2 = in.std * accel.mps2_per_unit;
   *variance +=
       std_mps2.squaredNorm() / 3.0 / n / (accel.gravity_mps2 * accel.gravity_mps2);
-  return sum.normalized();
+  return {
+      carried.normalized(), still.normalized(), rec.time_s[last - 1] - rec.time_s[first]};
 }
 
 // Each tangent component of a whole position's mean direction: the
@@ -129,6 +138,17 @@ double WholePositionVariance(const StaticInterval& in, const Calibration& accel)
 }
 
 }  // namespace
+
+void UseDirections(const Eigen::Vector3d& u_from,
+                   const Eigen::Vector3d& u_to,
+                   TurnData* turn) {
+  turn->u_from = u_from;
+  turn->u_to = u_to;
+  const Eigen::Vector3d e1 = u_to.unitOrthogonal();
+  turn->basis_to.col(0) = e1;
+  turn->basis_to.col(1) = u_to.cross(e1);
+  turn->cache = TurnCache{};
+}
 
 double TurnData::Sigma(double radps_per_unit) const {
   return std::sqrt(direction_variance_rad2 +
@@ -223,18 +243,38 @@ void FillIncrements(const Recording& rec,
     if (with_g) bias += g_sens * correct(rec.accel[i]);
     return bias;
   };
+  // Bias-free rates from one sample before the turn to one after it (when
+  // the recording has them), for the four-point rule below.
+  const std::size_t first = t->begin > 0 ? t->begin - 1 : t->begin;
+  const std::size_t last = std::min(t->end + 1, rec.size() - 1);
+  std::vector<Eigen::Vector3d> rates;
+  rates.reserve(last - first + 1);
+  std::vector<double> lambdas;
+  lambdas.reserve(last - first + 1);
+  for (std::size_t i = first; i <= last; ++i) {
+    double l = 0.0;
+    rates.push_back(rec.gyro_radps[i] - bias_at(i, &l));
+    lambdas.push_back(l);
+  }
+  auto rate = [&](std::size_t i) { return rates[i - first]; };
   t->steps.reserve(t->end - t->begin);
   double lambda_sum = 0.0;
-  double l0 = 0.0;
-  Eigen::Vector3d w0 = rec.gyro_radps[t->begin] - bias_at(t->begin, &l0);
   for (std::size_t i = t->begin; i < t->end; ++i) {
-    double l1 = 0.0;
-    const Eigen::Vector3d w1 = rec.gyro_radps[i + 1] - bias_at(i + 1, &l1);
     const double dt = rec.time_s[i + 1] - rec.time_s[i];
-    t->steps.push_back({w0 * dt, w1 * dt});
-    lambda_sum += 0.5 * (l0 + l1);
-    w0 = w1;
-    l0 = l1;
+    // The angle over the interval by the cubic through the rates at i − 1 …
+    // i + 2, dt (−w₋₁ + 13 w₀ + 13 w₁ − w₂)/24, where the trapezoid's
+    // dt (w₀ + w₁)/2 errs by dt³ ẅ/12 (on the simulator's turns, which shake
+    // by 3° at 3-9 Hz, sampled at 100 Hz, it takes a fifth of the variance
+    // the integration adds to a turn; the rest is not the rate's quadrature,
+    // and is gone at 400 Hz). Both ends move by the same amount, so the
+    // coning term keeps its form; in the middle of a turn every sample still
+    // weighs dt, so the white noise is integrated as before.
+    Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+    if (i > first && i + 1 < last) {
+      shift = (rate(i) + rate(i + 1) - rate(i - 1) - rate(i + 2)) * (dt / 24.0);
+    }
+    t->steps.push_back({rate(i) * dt + shift, rate(i + 1) * dt + shift});
+    lambda_sum += 0.5 * (lambdas[i - first] + lambdas[i + 1 - first]);
   }
   const double duration = t->end_s - t->start_s;
   const double lambda = t->steps.empty() ? 0.5 : lambda_sum / t->steps.size();
@@ -286,41 +326,44 @@ TurnProblem BuildTurnProblem(const Recording& rec,
   for (const auto& b : rest_bias) problem.bias_without_g_raw += b;
   problem.bias_without_g_raw /= static_cast<double>(rest_bias.size());
 
+  // The turns run between the positions' edges as the sensors show them, not
+  // as detection trimmed them; the biases stay the detected positions' means.
+  const std::vector<StaticInterval> edges = ExtendToMotion(rec, intervals);
   for (std::size_t k = 0; k + 1 < intervals.size(); ++k) {
     TurnData t;
     t.from_position = k;
-    t.begin = intervals[k].end - 1;
-    t.end = intervals[k + 1].begin;
+    t.begin = edges[k].end - 1;
+    t.end = edges[k + 1].begin;
     t.start_s = rec.time_s[t.begin];
     t.end_s = rec.time_s[t.end];
     if (direction_window_s > 0.0) {
-      t.u_from = EdgeDirection(rec,
-                               intervals[k],
-                               accel,
-                               direction_window_s,
-                               true,
-                               gyro[k].mean,
-                               carry_radps_per_unit,
-                               &t.direction_variance_rad2);
-      t.u_to = EdgeDirection(rec,
-                             intervals[k + 1],
+      t.from = EdgeDirection(rec,
+                             edges[k],
                              accel,
                              direction_window_s,
-                             false,
-                             gyro[k + 1].mean,
+                             true,
+                             gyro[k].mean,
                              carry_radps_per_unit,
                              &t.direction_variance_rad2);
+      t.to = EdgeDirection(rec,
+                           edges[k + 1],
+                           accel,
+                           direction_window_s,
+                           false,
+                           gyro[k + 1].mean,
+                           carry_radps_per_unit,
+                           &t.direction_variance_rad2);
     } else {
-      t.u_from = accel.Correct(intervals[k].mean).normalized();
-      t.u_to = accel.Correct(intervals[k + 1].mean).normalized();
+      const Eigen::Vector3d from = accel.Correct(intervals[k].mean).normalized();
+      const Eigen::Vector3d to = accel.Correct(intervals[k + 1].mean).normalized();
+      t.from = {from, from, 0.0};
+      t.to = {to, to, 0.0};
       t.direction_variance_rad2 = WholePositionVariance(intervals[k], accel) +
                                   WholePositionVariance(intervals[k + 1], accel);
     }
     FillIncrements(
         rec, accel, gyro[k], gyro[k + 1], rest_bias[k], rest_bias[k + 1], problem, &t);
-    const Eigen::Vector3d e1 = t.u_to.unitOrthogonal();
-    t.basis_to.col(0) = e1;
-    t.basis_to.col(1) = t.u_to.cross(e1);
+    UseDirections(t.from.carried, t.to.carried, &t);
     problem.turns.push_back(std::move(t));
   }
   return problem;

@@ -46,6 +46,16 @@ struct TurnCache {
   std::size_t next_along = 0;
 };
 
+/// A gravity direction at a position's edge (unit, body frame at the edge):
+/// the mean over the direction window with each sample carried to the edge
+/// by the gyroscope at the nominal scale, the plain mean, and the window's
+/// length. Equal, with no window, for a whole position's mean.
+struct EdgeDirections {
+  Eigen::Vector3d carried = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d still = Eigen::Vector3d::UnitZ();
+  double window_s = 0.0;
+};
+
 struct TurnData {
   std::size_t from_position = 0;
   std::size_t begin = 0;  // first and last sample integrated (inclusive)
@@ -55,8 +65,13 @@ struct TurnData {
   /// Each sample interval: the bias-free readings at its two ends times its
   /// length (raw units × s).
   std::vector<TurnStep> steps;
+  /// Both measures of the directions at the two edges (turn_weights.h
+  /// chooses which the fit uses).
+  EdgeDirections from;
+  EdgeDirections to;
   /// Unit gravity directions (body frame) before and after, and an
-  /// orthonormal basis of the plane perpendicular to the one after.
+  /// orthonormal basis of the plane perpendicular to the one after: the
+  /// carried ones until UseDirections sets others.
   Eigen::Vector3d u_from = Eigen::Vector3d::UnitZ();
   Eigen::Vector3d u_to = Eigen::Vector3d::UnitZ();
   Eigen::Matrix<double, 3, 2> basis_to = Eigen::Matrix<double, 3, 2>::Zero();
@@ -105,6 +120,11 @@ TurnProblem BuildTurnProblem(const Recording& recording,
                              GSensitivity g_sensitivity,
                              double min_f,
                              double carry_radps_per_unit);
+
+/// Sets the turn's directions (and the basis at `u_to`); forgets its cache.
+void UseDirections(const Eigen::Vector3d& u_from,
+                   const Eigen::Vector3d& u_to,
+                   TurnData* turn);
 
 /// Residual of one turn (unwhitened, rad: the tilt components in the basis
 /// at u_to) at the effective matrix `m` applied to raw increments, and its

@@ -46,3 +46,16 @@ mpcal_cli_test(repeat_imu_files_scale_row EXIT 0
   ARGS repeat ${_imu1} ${_imu2})
 mpcal_cli_test(report_imu_gyro_section EXIT 0 MATCH "<section id=.gyroscope.>"
   ARGS report --calib ${_imu1} -o -)
+# Two halves by time of the Xsens recording (rows 1-25587 and the rest, each
+# calibrated by mpcal calibrate --gyro-units counts): each half found its own
+# nominal rad/s per count (0.5 % apart), and M is relative to it. Compared at
+# one nominal scale the halves agree; compared as written, every scale and
+# bias would read "changed".
+set(_half1 ${MPCAL_TEST_DATA}/xsens_imu_half1.json)
+set(_half2 ${MPCAL_TEST_DATA}/xsens_imu_half2.json)
+mpcal_cli_test(repeat_imu_counts_at_one_nominal_scale EXIT 0
+  MATCH "^\\(raw counts: every trial at trial 1's nominal 0\\.000209[0-9]* rad/s per count"
+  ARGS repeat ${_half1} ${_half2})
+mpcal_cli_test(repeat_imu_counts_halves_agree EXIT 0
+  MATCH "^gyroscope: every entry consistent between the trials within their 1σ"
+  ARGS repeat ${_half1} ${_half2})
