@@ -156,8 +156,17 @@ void PrintCoverage(const CoverageResult& cov, const CoverageOptions& o) {
              cov.observability);
 }
 
+GyroUnits GyroUnitsOf(const LogOptions& log) {
+  if (log.gyro_in_counts) return GyroUnits::kCounts;
+  return log.gyro_in_dps ? GyroUnits::kDps : GyroUnits::kRadps;
+}
+
 // The turns between the positions, as the gyroscope measured them.
-void PrintTurns(const Recording& rec, const std::vector<Turn>& turns, double scale) {
+// `logged`: the gyroscope's units in the log (a log in deg/s is read as rad/s).
+void PrintTurns(const Recording& rec,
+                const std::vector<Turn>& turns,
+                double scale,
+                GyroUnits logged) {
   if (turns.empty()) return;
   const double t0 = rec.time_s.front();
   fmt::print("\n{:>5} {:>9} {:>7} {:>9} {:>7} {:>7} {:>7} {:>8}\n",
@@ -187,12 +196,7 @@ void PrintTurns(const Recording& rec, const std::vector<Turn>& turns, double sca
       rec.gyro_units == GyroUnits::kCounts
           ? fmt::format("nominal scale {:.5g} rad/s per count, fitted to the tilts",
                         scale)
-          : fmt::format("in {}", ToString(rec.gyro_units)));
-}
-
-GyroUnits GyroUnitsOf(const LogOptions& log) {
-  if (log.gyro_in_counts) return GyroUnits::kCounts;
-  return log.gyro_in_dps ? GyroUnits::kDps : GyroUnits::kRadps;
+          : fmt::format("in {}", ToString(logged)));
 }
 
 void Run(DetectFlags& f) {
@@ -236,7 +240,7 @@ void Run(DetectFlags& f) {
   PrintDetection(rec, det, o);
   for (const auto& n : det.notes) fmt::print("  note: {}\n", ExplainNote(n));
   PrintIntervals(rec, det, cov);
-  PrintTurns(rec, turns, gyro_scale);
+  PrintTurns(rec, turns, gyro_scale, GyroUnitsOf(f.log));
   PrintCoverage(cov, co);
 
   if (!f.json.empty()) {

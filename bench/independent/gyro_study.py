@@ -22,7 +22,7 @@ both define it):
                (detection trims ~0.8 s of settling at each end, so turns
                between its positions are ~1 s longer and hold more white
                noise). mpcal's gyroscope extends the positions to the motion
-               (src/gyro/turn_edges.h), so its error can fall below this one:
+               (ExtendToMotion in include/mpcal/detect.h), so its error can fall below this one:
                it shows what the segmentation alone would cost.
 
 PASS when every session calibrated its gyroscope, the RMS of z over all

@@ -120,11 +120,15 @@ class SessionError : public Error {
 /// \throws mpcal::UnitsError when the median magnitude is far from
 ///   `gravity_mps2` (outside 0.5-1.6 g, beyond any sensor's own errors),
 ///   saying which units the readings look like; mpcal::Error (kOption) when
-///   `gravity_mps2` is not a plausible gravity.
+///   `gravity_mps2` is not a plausible gravity; mpcal::Error (kUnits, with
+///   the gyroscope's units in its Advice) when a gyroscope read in rad/s
+///   reaches beyond 70 rad/s (4000 deg/s, the largest full scale of MEMS
+///   gyroscopes): deg/s, or raw counts, read as rad/s.
 void CheckUnits(const Recording& recording, double gravity_mps2);
 
 /// The turns between neighbouring positions (in time order, as DetectStatic
-/// found them), integrated from the gyroscope's readings by the exponential
+/// found them, grown to the motion by ExtendToMotion), integrated from the
+/// gyroscope's readings by the exponential
 /// map with the bias measured at rest (the mean of the two positions' mean
 /// readings) taken out. The nominal scale is that of the gyroscope's units;
 /// for raw counts, the one common scale that carries the gravity direction

@@ -26,6 +26,7 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -223,5 +224,23 @@ struct Turn {
 ///   window, its time does not increase, a reading is not finite, or the
 ///   options are invalid.
 DetectResult DetectStatic(const Recording& recording, const DetectOptions& options);
+
+/// Each position grown to the motion on either side, for the turns between
+/// them. Detection keeps a position's samples away from the motion by half
+/// its window and the settling time (about 0.8 s at each end by default),
+/// which the accelerometer's mean wants; a turn integrated by the gyroscope
+/// over that still time only gathers its noise. A position's end moves
+/// forward (and the next one's begin back) one sample at a time while the
+/// mean over the next `kMotionEdgeWindowS` of each reading's departure from
+/// the position's mean stays within the noise (χ² over the six axes of both
+/// sensors, against the position's own scatter or the median position's
+/// when larger, at 0.01 %); then it moves back by two such windows, since a
+/// hand's turn starts as t² under the noise. Only `begin`, `end`, `start_s`
+/// and `end_s` change: the means and scatters stay the detected ones. A
+/// position never reaches past its neighbour's edge, and never shrinks.
+/// Returns the intervals as given when the recording has no gyroscope.
+std::vector<StaticInterval> ExtendToMotion(const Recording& recording,
+                                           std::span<const StaticInterval> intervals);
+inline constexpr double kMotionEdgeWindowS = 0.05;
 
 }  // namespace mpcal

@@ -10,7 +10,6 @@
 
 #include "mpcal/error.h"
 #include "rotation.h"
-#include "turn_edges.h"
 
 namespace mpcal::internal {
 namespace {
@@ -328,7 +327,7 @@ TurnProblem BuildTurnProblem(const Recording& rec,
 
   // The turns run between the positions' edges as the sensors show them, not
   // as detection trimmed them; the biases stay the detected positions' means.
-  const std::vector<StaticInterval> edges = ExtendToMotion(rec, intervals);
+  const std::vector<StaticInterval> edges = mpcal::ExtendToMotion(rec, intervals);
   for (std::size_t k = 0; k + 1 < intervals.size(); ++k) {
     TurnData t;
     t.from_position = k;

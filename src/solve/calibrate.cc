@@ -132,11 +132,14 @@ std::vector<Turn> MeasureTurns(const Recording& recording,
   std::vector<Eigen::Vector3d> means;
   for (const StaticInterval& iv : intervals) means.push_back(iv.mean);
   const Eigen::Vector3d centre = FitSphere(means, recording.units).centre;
+  // The turns between the positions grown to the motion, as the gyroscope's
+  // calibration integrates them.
+  const std::vector<StaticInterval> edges = ExtendToMotion(recording, intervals);
   std::vector<TurnSpan> spans;
   for (std::size_t k = 0; k + 1 < intervals.size(); ++k) {
     TurnSpan span;
-    span.begin = intervals[k].end - 1;
-    span.end = intervals[k + 1].begin;
+    span.begin = edges[k].end - 1;
+    span.end = edges[k + 1].begin;
     span.bias_raw =
         0.5 * (GyroMean(recording, intervals[k]) + GyroMean(recording, intervals[k + 1]));
     span.u_from = (intervals[k].mean - centre).normalized();
@@ -160,7 +163,39 @@ std::vector<Turn> MeasureTurns(const Recording& recording,
   return turns;
 }
 
+namespace {
+
+// The largest full scale of MEMS gyroscopes (4000 deg/s, about 70 rad/s):
+// a log in rad/s that reaches beyond it holds deg/s (or counts).
+constexpr double kMaxGyroRadps = 4000.0 * std::numbers::pi / 180.0;
+
+void CheckGyroUnits(const Recording& recording) {
+  if (recording.gyro_units != GyroUnits::kRadps ||
+      recording.gyro_radps.size() != recording.size()) {
+    return;
+  }
+  double largest = 0.0;
+  for (const Eigen::Vector3d& w : recording.gyro_radps) {
+    largest = std::max(largest, w.cwiseAbs().maxCoeff());
+  }
+  if (!(largest > kMaxGyroRadps)) return;
+  const bool dps = largest * std::numbers::pi / 180.0 <= kMaxGyroRadps;
+  throw Error(
+      ErrorKind::kUnits,
+      fmt::format("{}: the gyroscope reaches {:.4g} rad/s, beyond the {:.0f} rad/s "
+                  "(4000 deg/s) full scale of MEMS gyroscopes; the readings look "
+                  "like {}",
+                  recording.source,
+                  largest,
+                  kMaxGyroRadps,
+                  dps ? "deg/s" : "raw ADC counts"),
+      Advice{{{Option::kLogGyroUnits, dps ? "dps" : "counts"}}, Stage::kNone, ""});
+}
+
+}  // namespace
+
 void CheckUnits(const Recording& recording, double gravity_mps2) {
+  CheckGyroUnits(recording);
   if (!IsPlausibleGravity(gravity_mps2)) {
     throw Error(ErrorKind::kOption,
                 fmt::format("gravity {} m/s2 is outside the plausible {}-{} m/s2",

@@ -15,7 +15,7 @@ mpcal_cli_test(calibrate_xsens_split_half EXIT 0
   ARGS calibrate ${_xsens} --units counts --gravity 9.81744 -o calib.json)
 mpcal_cli_test(calibrate_ferraris_split_half_not_possible EXIT 0
   MATCH "split-half \\(by time, 5 \\+ 5 positions\\): not possible"
-  ARGS calibrate ${_ferraris} --rate 102.4 --model bias-scale-6 -o calib.json)
+  ARGS calibrate ${_ferraris} --rate 102.4 --gyro-units dps --model bias-scale-6 -o calib.json)
 # A bumped stretch: 4 mg on x from 246 s to 400 s of a 40-position session.
 # The halves by time disagree; calibrate says so, at the split's share of the
 # check's 1 %, widens every 1σ, and stores the widening in the file.
@@ -35,10 +35,10 @@ mpcal_cli_test(calibrate_xsens_read_as_mps2 EXIT 1
   ARGS calibrate ${_xsens} --gravity 9.81744 -o calib.json)
 mpcal_cli_test(calibrate_ferraris_six_parameters EXIT 0
   MATCH "^fit: converged after"
-  ARGS calibrate ${_ferraris} --rate 102.4 --model bias-scale-6 -o calib.json)
+  ARGS calibrate ${_ferraris} --rate 102.4 --gyro-units dps --model bias-scale-6 -o calib.json)
 mpcal_cli_test(calibrate_ferraris_nine_parameters_refused EXIT 1
   MATCH "do not determine theta.*--model bias-scale-6" ABSENT calib.json
-  ARGS calibrate ${_ferraris} --rate 102.4 -o calib.json)
+  ARGS calibrate ${_ferraris} --rate 102.4 --gyro-units dps -o calib.json)
 mpcal_cli_test(calibrate_missing_file EXIT 1 MATCH "no_such.csv" ABSENT calib.json
   ARGS calibrate no_such.csv -o calib.json)
 mpcal_cli_test(calibrate_output_directory_missing EXIT 1

@@ -187,9 +187,33 @@ TEST(RealRecordings, XsensRawCountsCalibrateAsWellAsImuTk) {
   EXPECT_LT(r.solve.residual_rms_after_mps2, 1.2 * independent);
 }
 
+// Its gyroscope is in deg/s: read as rad/s it reaches 895 rad/s, beyond the
+// 4000 deg/s of any MEMS gyroscope, and the units are refused before
+// anything is fitted, with the units it looks like.
+TEST(RealRecordings, FerrarisGyroscopeInDegreesReadAsRadiansIsRefused) {
+  LogOptions log;
+  log.rate_hz = 102.4;
+  const Recording rec =
+      ReadLog(testing::RealDataPath("imucal-ferraris/example_ferraris_session.csv"), log);
+  try {
+    CheckUnits(rec, kStandardGravityMps2);
+    FAIL() << "deg/s read as rad/s must be refused";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kUnits);
+    ASSERT_EQ(e.advice().settings.size(), 1u);
+    EXPECT_EQ(e.advice().settings[0].option, Option::kLogGyroUnits);
+    EXPECT_EQ(e.advice().settings[0].value, "dps");
+  }
+  log.gyro_in_dps = true;
+  EXPECT_NO_THROW(CheckUnits(
+      ReadLog(testing::RealDataPath("imucal-ferraris/example_ferraris_session.csv"), log),
+      kStandardGravityMps2));
+}
+
 TEST(RealRecordings, FerrarisSixPosesCalibrateWithTheSixParameterModelOnly) {
   LogOptions log;
   log.rate_hz = 102.4;
+  log.gyro_in_dps = true;
   const Recording rec =
       ReadLog(testing::RealDataPath("imucal-ferraris/example_ferraris_session.csv"), log);
   try {

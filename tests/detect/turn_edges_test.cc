@@ -1,4 +1,4 @@
-// Where the turns start and stop (gyro/turn_edges.h), on recordings made
+// Where the turns start and stop (detect.h, ExtendToMotion), on recordings made
 // here sample by sample: rests joined by minimum-jerk turns, as a hand turns.
 #include <cmath>
 #include <numbers>
@@ -9,7 +9,6 @@
 
 #include <Eigen/Geometry>
 
-#include "gyro/turn_edges.h"
 #include "mpcal/detect.h"
 #include "mpcal/recording.h"
 
@@ -84,8 +83,7 @@ TEST(ExtendToMotion, ReachesTheMotionAndNotBeyond) {
                  // back, and the minimum jerk's slow start under the noise
   for (unsigned seed = 1; seed <= 20; ++seed) {
     const Session s = MakeSession(seed, 0.005, 0.02);
-    const std::vector<StaticInterval> e =
-        internal::ExtendToMotion(s.recording, s.detected);
+    const std::vector<StaticInterval> e = ExtendToMotion(s.recording, s.detected);
     ASSERT_EQ(e.size(), 3u);
     for (std::size_t k = 0; k < 2; ++k) {
       const double end_s = s.recording.time_s[e[k].end - 1];
@@ -111,7 +109,7 @@ TEST(ExtendToMotion, ReachesTheMotionAndNotBeyond) {
 
 TEST(ExtendToMotion, AQuantisedSensorThatNeverMovesAtRestGrowsToo) {
   const Session s = MakeSession(1, 0.0, 0.0);  // readings constant at rest
-  const std::vector<StaticInterval> e = internal::ExtendToMotion(s.recording, s.detected);
+  const std::vector<StaticInterval> e = ExtendToMotion(s.recording, s.detected);
   const double end_s = s.recording.time_s[e[0].end - 1];
   EXPECT_LE(end_s, s.turn_start_s[0]);
   EXPECT_GE(end_s, s.turn_start_s[0] - 0.2);
@@ -122,7 +120,7 @@ TEST(ExtendToMotion, APositionNeverReachesPastItsNeighbour) {
   const Session s = MakeSession(3, 0.005, 0.02);
   const std::vector<StaticInterval> pieces = {Interval(s.recording, 1.0, 4.0),
                                               Interval(s.recording, 5.0, 9.0)};
-  const std::vector<StaticInterval> e = internal::ExtendToMotion(s.recording, pieces);
+  const std::vector<StaticInterval> e = ExtendToMotion(s.recording, pieces);
   EXPECT_LE(e[0].end, pieces[1].begin);
   EXPECT_GE(e[1].begin, e[0].end);
   EXPECT_GT(e[0].end, pieces[0].end);

@@ -1,4 +1,6 @@
-#include "turn_edges.h"
+// Where the turns start and stop (detect.h, ExtendToMotion): the two
+// sensors, sample by sample, beside each detected position.
+#include "mpcal/detect.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,12 +8,11 @@
 
 #include <Eigen/Core>
 
-namespace mpcal::internal {
+namespace mpcal {
 namespace {
 
-// The window ahead of an edge over which the readings are averaged: short
-// beside a turn, long enough that a slow start shows above the noise.
-constexpr double kEdgeWindowS = 0.05;
+// The window ahead of an edge (kMotionEdgeWindowS) is short beside a turn,
+// long enough that a slow start shows above the noise.
 constexpr std::size_t kMinEdgeWindow = 3;
 // χ² with 6 degrees of freedom at 0.01 %: a position stops growing at the
 // first window the noise alone would reach once in ten thousand, so that a
@@ -115,8 +116,9 @@ std::vector<StaticInterval> ExtendToMotion(const Recording& rec,
   }
   const double span_s = rec.time_s.back() - rec.time_s.front();
   const double period_s = span_s / static_cast<double>(rec.size() - 1);
-  const auto w = std::max(kMinEdgeWindow,
-                          static_cast<std::size_t>(std::lround(kEdgeWindowS / period_s)));
+  const auto w =
+      std::max(kMinEdgeWindow,
+               static_cast<std::size_t>(std::lround(kMotionEdgeWindowS / period_s)));
   std::size_t floor_index = 0;  // the previous position's extended end
   for (std::size_t k = 0; k < out.size(); ++k) {
     StaticInterval& in = out[k];
@@ -134,4 +136,4 @@ std::vector<StaticInterval> ExtendToMotion(const Recording& rec,
   return out;
 }
 
-}  // namespace mpcal::internal
+}  // namespace mpcal
