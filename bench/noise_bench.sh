@@ -52,11 +52,17 @@ median() {
   sort -n -k"$2","$2" "$work/$1" | awk -v c="$2" '{v[NR]=$c} END {print v[int((NR+1)/2)]}'
 }
 
+# Each mpcal runs straight after a floor run, so that both find the same
+# state of memory: fresh memory costs this virtual machine more when the
+# host has taken back what the run before freed (the floor frees nothing),
+# up to a second of kernel time for the 615 MB of samples; a baseline run
+# straight after the new one would find it warm.
 run warmup "$floor" "$log"
 for _ in $(seq "$reps"); do
   run floor "$floor" "$log"
   run noise "$mpcal" noise "$log" --json "$work/noise.json" --kalibr "$work/imu.yaml"
   if [ -n "$baseline" ]; then
+    run floor "$floor" "$log"
     run baseline "$baseline" noise "$log" --json "$work/noise0.json" --kalibr "$work/imu0.yaml"
   fi
 done
