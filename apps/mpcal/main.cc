@@ -2,6 +2,7 @@
 // subcommands and turns every failure into one line on stderr and an exit
 // code: 1 for bad input or I/O, 2 for usage.
 #include <fcntl.h>
+#include <malloc.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -72,11 +73,28 @@ int CloseStdout(int code) {
   return 1;
 }
 
+// A command's stages allocate and free arrays of a recording's size one
+// after another (the reader's chunks, the samples, detection's statistic,
+// the fits' residuals). glibc gives each array above 128 KiB its own mapping
+// and returns it on free, so the next stage faults in fresh pages again, and
+// trims the heap's top as soon as 128 KiB are free. Kept in the heap up to
+// 32 MiB an array (glibc's largest mapping threshold) and up to 256 MiB of
+// free top, they are reused: on the Xsens recording, calibrate of both
+// sensors faults 2,900 pages instead of 3,900 and takes 76 ms of CPU instead
+// of 93 (`perf stat -r 20`; bench/gyro_speed_bench.sh).
+void ReuseFreedMemory() {
+#ifdef M_MMAP_THRESHOLD
+  ::mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  ::mallopt(M_TRIM_THRESHOLD, 256 << 20);
+#endif
+}
+
 int Run(int argc, char** argv);
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  ReuseFreedMemory();
   try {
     if (HoldClosedStandardDescriptors()) {
       PrintError("standard output is closed; redirect it to a file or to /dev/null");
