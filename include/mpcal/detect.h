@@ -241,6 +241,8 @@ DetectResult DetectStatic(const Recording& recording, const DetectOptions& optio
 /// Returns the intervals as given when the recording has no gyroscope.
 std::vector<StaticInterval> ExtendToMotion(const Recording& recording,
                                            std::span<const StaticInterval> intervals);
+/// ExtendToMotion's window (s): short beside a turn, long enough that a
+/// slow start shows above the noise.
 inline constexpr double kMotionEdgeWindowS = 0.05;
 
 }  // namespace mpcal

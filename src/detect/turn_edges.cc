@@ -11,8 +11,7 @@
 namespace mpcal {
 namespace {
 
-// The window ahead of an edge (kMotionEdgeWindowS) is short beside a turn,
-// long enough that a slow start shows above the noise.
+// The window ahead of an edge (kMotionEdgeWindowS) in samples, at least.
 constexpr std::size_t kMinEdgeWindow = 3;
 // χ² with 6 degrees of freedom at 0.01 %: a position stops growing at the
 // first window the noise alone would reach once in ten thousand, so that a
