@@ -216,8 +216,9 @@ std::vector<double> NominalRatios(const std::vector<const GyroCalibration*>& g) 
   return ratios;
 }
 
-std::vector<RepeatRow> GyroRepeatRows(const std::vector<const GyroCalibration*>& g) {
-  const std::vector<double> ratios = NominalRatios(g);
+// `ratios`: NominalRatios(g).
+std::vector<RepeatRow> GyroRepeatRows(const std::vector<const GyroCalibration*>& g,
+                                      const std::vector<double>& ratios) {
   std::vector<RepeatRow> rows;
   for (int p = 0; p < 9; ++p) {
     const int r = p / 3;
@@ -298,7 +299,7 @@ std::string FormatGyroRepeatTable(std::span<const Calibration> trials,
     out += fmt::format(" {:>18}", fmt::format("trial {}", i + 1));
   out += fmt::format(" {:>10} {:>10}  {}\n", "mean", "std", "between trials");
   std::vector<std::string> changed;
-  for (const RepeatRow& row : GyroRepeatRows(g)) {
+  for (const RepeatRow& row : GyroRepeatRows(g, ratios)) {
     out += fmt::format("{:<22} {:<6}", row.label, row.unit);
     for (std::size_t i = 0; i < row.values.size(); ++i) {
       out +=

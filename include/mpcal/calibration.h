@@ -190,6 +190,23 @@ struct Calibration {
   Eigen::Vector3d Correct(const Eigen::Vector3d& reading) const {
     return model.Correct(reading * mps2_per_unit);
   }
+
+  /// The same correction as the affine map it is, a = linear · reading +
+  /// offset (model.h: T·diag(1/(1 + s))·(u y − b)), for loops over many
+  /// samples: Correct evaluates T's tangents and cosines at every call.
+  struct AffineCorrection {
+    Eigen::Matrix3d linear;
+    Eigen::Vector3d offset;
+    Eigen::Vector3d operator()(const Eigen::Vector3d& reading) const {
+      return linear * reading + offset;
+    }
+  };
+  AffineCorrection Affine() const {
+    const Eigen::Matrix3d t_over_scale =
+        model.NonOrthogonality() *
+        (Eigen::Vector3d::Ones() + model.scale_factor_error).cwiseInverse().asDiagonal();
+    return {t_over_scale * mps2_per_unit, -t_over_scale * model.bias_mps2};
+  }
 };
 
 }  // namespace mpcal

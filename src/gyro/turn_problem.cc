@@ -26,26 +26,6 @@ double Median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-// The accelerometer's correction as the affine map it is, a = A y + c
-// (model.h: T·diag(1/(1 + s))·(u y − b)), built once per pass:
-// Calibration::Correct evaluates T's tangents and cosines at every call, and
-// the turns correct every sample of their direction windows.
-struct AffineCorrection {
-  explicit AffineCorrection(const Calibration& accel) {
-    const ErrorModel& e = accel.model;
-    const Eigen::Matrix3d t_over_scale =
-        e.NonOrthogonality() *
-        (Eigen::Vector3d::Ones() + e.scale_factor_error).cwiseInverse().asDiagonal();
-    linear = t_over_scale * accel.mps2_per_unit;
-    offset = -t_over_scale * e.bias_mps2;
-  }
-  Eigen::Vector3d operator()(const Eigen::Vector3d& reading) const {
-    return linear * reading + offset;
-  }
-  Eigen::Matrix3d linear;
-  Eigen::Vector3d offset;
-};
-
 struct PositionGyro {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   double std = 0.0;  // RMS over the axes of the per-axis sample std
@@ -68,6 +48,16 @@ PositionGyro GyroAt(const Recording& rec, const StaticInterval& in) {
   p.samples = n;
   p.centre_s = 0.5 * (rec.time_s[in.begin] + rec.time_s[in.end - 1]);
   return p;
+}
+
+// Each tangent component of the mean direction over `samples` samples of
+// the position `in`: the accelerometer's noise of the mean over g.
+double MeanDirectionVariance(const StaticInterval& in,
+                             const Calibration& accel,
+                             std::size_t samples) {
+  const Eigen::Vector3d std_mps2 = in.std * accel.mps2_per_unit;
+  const double n = static_cast<double>(std::max<std::size_t>(samples, 1));
+  return std_mps2.squaredNorm() / 3.0 / n / (accel.gravity_mps2 * accel.gravity_mps2);
 }
 
 // The direction over `window_s` at the end (or start) of a position, in the
@@ -97,7 +87,7 @@ EdgeDirections EdgeDirection(const Recording& rec,
   }
   Eigen::Vector3d carried = Eigen::Vector3d::Zero();
   Eigen::Vector3d still = Eigen::Vector3d::Zero();
-  const AffineCorrection correct(accel);
+  const Calibration::AffineCorrection correct = accel.Affine();
   const bool carry = radps_per_unit > 0.0 && !rec.gyro_radps.empty();
   auto step = [&](std::size_t i) {  // rotation from sample i to i + 1
     const Eigen::Vector3d w =
@@ -120,20 +110,9 @@ EdgeDirections EdgeDirection(const Recording& rec,
       still += f;
     }
   }
-  const double n = static_cast<double>(last - first);
-  const Eigen::Vector3d std_mps2 = in.std * accel.mps2_per_unit;
-  *variance +=
-      std_mps2.squaredNorm() / 3.0 / n / (accel.gravity_mps2 * accel.gravity_mps2);
+  *variance += MeanDirectionVariance(in, accel, last - first);
   return {
       carried.normalized(), still.normalized(), rec.time_s[last - 1] - rec.time_s[first]};
-}
-
-// Each tangent component of a whole position's mean direction: the
-// accelerometer's noise of the mean over g.
-double WholePositionVariance(const StaticInterval& in, const Calibration& accel) {
-  const Eigen::Vector3d std_mps2 = in.std * accel.mps2_per_unit;
-  const double n = static_cast<double>(std::max<std::size_t>(in.samples(), 1));
-  return std_mps2.squaredNorm() / 3.0 / n / (accel.gravity_mps2 * accel.gravity_mps2);
 }
 
 }  // namespace
@@ -235,7 +214,7 @@ void FillIncrements(const Recording& rec,
   const double span_s = std::max(b.centre_s - a.centre_s, 1e-9);
   const Eigen::Matrix3d& g_sens = problem.g_sensitivity_raw_per_mps2;
   const bool with_g = g_sens.any();
-  const AffineCorrection correct(accel);
+  const Calibration::AffineCorrection correct = accel.Affine();
   auto bias_at = [&](std::size_t i, double* lambda) {
     *lambda = std::clamp((rec.time_s[i] - a.centre_s) / span_s, 0.0, 1.0);
     Eigen::Vector3d bias = (1.0 - *lambda) * bias_a + *lambda * bias_b;
@@ -357,8 +336,9 @@ TurnProblem BuildTurnProblem(const Recording& rec,
       const Eigen::Vector3d to = accel.Correct(intervals[k + 1].mean).normalized();
       t.from = {from, from, 0.0};
       t.to = {to, to, 0.0};
-      t.direction_variance_rad2 = WholePositionVariance(intervals[k], accel) +
-                                  WholePositionVariance(intervals[k + 1], accel);
+      t.direction_variance_rad2 =
+          MeanDirectionVariance(intervals[k], accel, intervals[k].samples()) +
+          MeanDirectionVariance(intervals[k + 1], accel, intervals[k + 1].samples());
     }
     FillIncrements(
         rec, accel, gyro[k], gyro[k + 1], rest_bias[k], rest_bias[k + 1], problem, &t);
@@ -370,7 +350,6 @@ TurnProblem BuildTurnProblem(const Recording& rec,
 
 namespace {
 
-// The cache entry of `turn` at `m`, computed (with the Jacobian) when absent.
 // The entry of `entries` at the key `matches`, computed by `fill` into the
 // least recently used one when absent; `next` is the least recently used.
 template <typename Entry, typename Matches, typename Fill>

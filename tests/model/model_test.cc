@@ -5,6 +5,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "mpcal/calibration.h"
+
 namespace mpcal {
 namespace {
 
@@ -47,6 +49,19 @@ TEST(ErrorModel, CorrectIsTheMatrixFormOfEquations8To10) {
       m.NonOrthogonality() *
       (y - m.bias_mps2).cwiseQuotient(Eigen::Vector3d::Ones() + m.scale_factor_error);
   EXPECT_LT((m.Correct(y) - expected).norm(), kRoundTripTolerance);
+}
+
+TEST(Calibration, AffineCorrectionIsCorrect) {
+  // Raw counts, so that the unit factor is in the map too.
+  Calibration c;
+  c.model = ConsumerGradeModel();
+  c.mps2_per_unit = 1.0 / 1670.0;
+  const Calibration::AffineCorrection affine = c.Affine();
+  for (const Eigen::Vector3d& y : {Eigen::Vector3d(33000.0, 31000.0, 36000.0),
+                                   Eigen::Vector3d(0.0, 0.0, 0.0),
+                                   Eigen::Vector3d(-16000.0, 250.0, 18000.0)}) {
+    EXPECT_LT((affine(y) - c.Correct(y)).norm(), kRoundTripTolerance);
+  }
 }
 
 TEST(ErrorModel, XAxisIsUntouchedByTheAngles) {
