@@ -11,10 +11,12 @@
 /// Without a header the columns are t, ax, ay, az in order unless `columns`
 /// says otherwise.
 ///
-/// Two entry points: ReadLog reads a whole log into a Recording (for
-/// calibration); LogScanner streams it line by line, keeping each line's
-/// bytes, for commands that rewrite a log (`mpcal apply`). Both read the file
-/// in large chunks and parse numbers with fast_float, so memory does not
+/// Three entry points: ReadLog reads a whole log into a Recording (for
+/// calibration); ReadLogRows reads it the same way but hands the rows over
+/// chunk by chunk instead of holding them (for analyses that need one pass,
+/// such as the noise's cumulative sums); LogScanner streams it line by line,
+/// keeping each line's bytes, for commands that rewrite a log. All read the
+/// file in large chunks and parse numbers with fast_float, so memory does not
 /// depend on the file's size beyond what the Recording itself holds.
 #pragma once
 
@@ -90,6 +92,41 @@ struct LogOptions {
 ///   a time column that goes back. Messages name the file, the line number
 ///   and, for a bad value, the column.
 Recording ReadLog(const std::string& path, const LogOptions& options);
+
+/// What ReadLogRows found besides the rows themselves.
+struct LogStreamSummary {
+  /// The name used in messages (the path, or "<stdin>"), as Recording::source.
+  std::string source;
+  /// Rows handed over (duplicated timestamps dropped).
+  std::size_t rows = 0;
+  /// Time of the first and last row handed over, in seconds (as time_s).
+  double first_time_s = 0.0;
+  double last_time_s = 0.0;
+  /// The log has gyroscope columns (the pieces' gyro_radps are filled).
+  bool has_gyro = false;
+  /// Exactly the warnings ReadLog would put in Recording::warnings.
+  std::vector<std::string> warnings;
+};
+
+/// Reads a log as ReadLog does (same layout detection, same two-thread
+/// parsing, same rules, errors and warnings) but hands the rows over in
+/// pieces, in file order, instead of holding them: `consume` is called with a
+/// Recording whose vectors hold only the next rows (a chunk's, about a
+/// megabyte of text; units, gyro_units and source set as ReadLog sets them;
+/// warnings empty; no duplicated timestamp; time strictly increasing across
+/// calls). The Recording is reused between calls: copy what must outlive the
+/// call. Memory stays at a few chunks whatever the log's length. An empty
+/// `consume` reads the log and drops the rows (the summary alone).
+///
+/// Errors are thrown when reached, after the rows before them were handed
+/// over: time going back, a malformed line with data after it, a read
+/// failure; "no data rows" and a time beyond any clock after the last
+/// piece. An exception thrown by `consume` stops reading and propagates.
+///
+/// \throws mpcal::Error as ReadLog.
+LogStreamSummary ReadLogRows(const std::string& path,
+                             const LogOptions& options,
+                             const std::function<void(const Recording& rows)>& consume);
 
 /// Where the columns of a log are, found from its first lines.
 struct LogLayout {

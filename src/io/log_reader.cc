@@ -1,15 +1,17 @@
-// The public face of the log reader: ReadLog and LogScanner, built from its
+// The public face of the log reader: ReadLog, ReadLogRows and LogScanner, built from its
 // parts (room-private headers beside this file):
 //   log_layout   layout detection: first bytes in, a layout out (no file access)
 //   log_columns  column names, the explicit mapping, the resolved mapping
 //   row_parser   the one parser of a data row
 //   chunk_source the file, its lines, and the two-thread chunk pipeline
-//   row_sink     rows into a Recording: duplicates, time going back, the
-//                cut-off last line, progress
+//   row_sink     rows into a Recording (held, or handed over chunk by
+//                chunk): duplicates, time going back, the cut-off last
+//                line, gaps, progress
 #include "mpcal/log_reader.h"
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -180,9 +182,17 @@ bool LogScanner::Next(LogLine* line) {
 }
 
 // ---------------------------------------------------------------------------
-// ReadLog: the whole log, parsed on two threads.
+// ReadLog and ReadLogRows: the whole log, parsed on two threads, either held
+// or handed over chunk by chunk.
 
-Recording ReadLog(const std::string& path, const LogOptions& options) {
+namespace {
+
+// The one code path of both: `*rec` gets the rows (all of them, or with
+// `consume` each chunk's in turn) and, at the end, the warnings.
+LogStreamSummary ReadRows(const std::string& path,
+                          const LogOptions& options,
+                          Recording* rec,
+                          std::function<void(const Recording&)> consume) {
   ThrowIfInvalid(options);
   logio::LogFile file(path);
   // Not zeroed first: read(2) writes it.
@@ -200,10 +210,9 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
   const LogLayout& layout = detected.layout;
   const logio::RowParser parser(layout, detected.roles, options.units);
 
-  Recording rec;
-  rec.units = options.units;
-  rec.source = file.source();
-  if (options.gyro_in_counts) rec.gyro_units = GyroUnits::kCounts;
+  rec->units = options.units;
+  rec->source = file.source();
+  if (options.gyro_in_counts) rec->gyro_units = GyroUnits::kCounts;
   logio::RowConversion conversion;
   conversion.parser = &parser;
   conversion.time_scale = layout.seconds_per_time_unit;
@@ -216,11 +225,12 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
 
   const std::size_t start = std::max(detected.bom_bytes, detected.skipped_bytes);
   logio::ProgressReporter progress(options.progress, file.size());
-  logio::RowSink sink(&rec,
+  logio::RowSink sink(rec,
                       layout.seconds_per_time_unit,
                       conversion.index_time,
                       detected.skipped_lines,
                       file.size());
+  if (consume) sink.StreamTo(std::move(consume));
   {
     logio::ChunkPipeline pipeline(&file, head.substr(start), conversion);
     head_bytes.reset();
@@ -231,9 +241,36 @@ Recording ReadLog(const std::string& path, const LogOptions& options) {
     }
   }
   progress.Finish();
-  rec.warnings = detected.warnings;
+  rec->warnings = detected.warnings;
   sink.Finish(layout.header_line > 0);
+
+  LogStreamSummary summary;
+  summary.source = rec->source;
+  summary.rows = sink.rows();
+  summary.first_time_s = sink.first_time_s();
+  summary.last_time_s = sink.last_time_s();
+  summary.has_gyro = layout.has_gyro();
+  return summary;
+}
+
+}  // namespace
+
+Recording ReadLog(const std::string& path, const LogOptions& options) {
+  Recording rec;
+  ReadRows(path, options, &rec, nullptr);
   return rec;
+}
+
+LogStreamSummary ReadLogRows(const std::string& path,
+                             const LogOptions& options,
+                             const std::function<void(const Recording& rows)>& consume) {
+  Recording rows;
+  // Without a consumer the rows are still streamed (and dropped), never held.
+  std::function<void(const Recording&)> hand_over = consume;
+  if (!hand_over) hand_over = [](const Recording&) {};
+  LogStreamSummary summary = ReadRows(path, options, &rows, std::move(hand_over));
+  summary.warnings = std::move(rows.warnings);
+  return summary;
 }
 
 }  // namespace mpcal

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <span>
+#include <string>
 #include <utility>
 
 #include <fmt/format.h>
@@ -87,6 +89,53 @@ std::string CutOffLine::Warning(const std::string& source) const {
       problem_);
 }
 
+void GapCounter::Add(std::span<const double> times_s) {
+  std::size_t i = 0;
+  while (!settled_ && i < times_s.size()) {
+    early_.push_back(times_s[i++]);
+    if (early_.size() > kTypicalSteps) Settle();
+  }
+  if (i == times_s.size()) return;
+  double before = last_;
+  for (; i < times_s.size(); ++i) {
+    Step(before, times_s[i]);
+    before = times_s[i];
+  }
+  last_ = before;
+}
+
+// The typical step from the times held, then their steps counted.
+void GapCounter::Settle() {
+  settled_ = true;
+  if (early_.size() < 3) return;  // too few steps to call one typical
+  std::vector<double> steps;
+  steps.reserve(early_.size() - 1);
+  for (std::size_t i = 0; i + 1 < early_.size(); ++i) {
+    steps.push_back(early_[i + 1] - early_[i]);
+  }
+  const auto middle = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
+  std::nth_element(steps.begin(), middle, steps.end());
+  typical_ = *middle;
+  limit_ = 5.0 * typical_;
+  for (std::size_t i = 0; i + 1 < early_.size(); ++i) Step(early_[i], early_[i + 1]);
+  last_ = early_.back();
+  std::vector<double>().swap(early_);
+}
+
+std::string GapCounter::Warning(const std::string& source) {
+  if (!settled_) Settle();
+  if (gaps_ == 0) return "";
+  return fmt::format(
+      "{}: {} gap{} in time longer than 5 sample periods ({:.4g} s); the largest is "
+      "{:.4g} s after t = {:.9g} s",
+      source,
+      gaps_,
+      gaps_ == 1 ? "" : "s",
+      typical_,
+      largest_,
+      largest_at_);
+}
+
 RowSink::RowSink(Recording* rec,
                  double time_scale,
                  bool index_time,
@@ -98,12 +147,27 @@ RowSink::RowSink(Recording* rec,
       line_base_(line_base),
       total_bytes_(total_bytes) {}
 
+void RowSink::StreamTo(std::function<void(const Recording&)> consume) {
+  consume_ = std::move(consume);
+}
+
+// clear() keeps the capacity: the next chunk's rows go into memory already
+// faulted in, so streaming a long log costs no fresh pages.
+void RowSink::HandOver() {
+  if (!consume_ || rec_->time_s.empty()) return;
+  consume_(*rec_);
+  rec_->time_s.clear();
+  rec_->accel.clear();
+  rec_->gyro_radps.clear();
+}
+
 // Sizes the arrays once, from the first row's length (or the chunk's
 // average, if shorter), so that a long log does not pay for repeated
 // doubling (and twice the memory).
+// Streaming needs no more than a chunk's rows, which the first chunk sizes.
 void RowSink::Reserve(const ChunkRows& c) {
   const std::size_t rows = c.time.size();
-  if (reserved_ || rows == 0 || total_bytes_ == 0) return;
+  if (consume_ || reserved_ || rows == 0 || total_bytes_ == 0) return;
   const double bytes_per_row = std::min(static_cast<double>(c.first_row_bytes),
                                         static_cast<double>(c.bytes.size()) / rows);
   const auto estimate = static_cast<std::size_t>(1.1 * static_cast<double>(total_bytes_) /
@@ -144,7 +208,8 @@ void RowSink::ThrowTimeBack(const ChunkRows& c, std::size_t row, std::size_t kep
   if (kept < c.time.size()) previous_line_ = LineOf(c, kept);
   const double t =
       index_time_ ? static_cast<double>(rows_before_ + row) * time_scale_ : c.time[row];
-  const double before = rec_->time_s.back();
+  const double before = last_time_s_;
+  HandOver();  // the rows before the error
   throw Error(ErrorKind::kTime,
               fmt::format("{}:{}: time goes back: {:.9g} s after {:.9g} s on line {}; "
                           "the rows must be in time order{}",
@@ -173,9 +238,13 @@ void RowSink::AppendRows(const ChunkRows& c) {
   std::size_t last_kept = rows;  // none yet in this chunk
   while (j < rows) {
     std::size_t k = j;
-    double previous = rec_->time_s.empty() ? time[k++] : rec_->time_s.back();
+    double previous = rows_ == 0 ? time[k++] : last_time_s_;
     while (k < rows && time[k] > previous) previous = time[k++];
     if (k > j) {
+      if (rows_ == 0) first_time_s_ = time[j];
+      rows_ += k - j;
+      last_time_s_ = time[k - 1];
+      gaps_.Add(std::span<const double>(time).subspan(j, k - j));
       rec_->time_s.insert(rec_->time_s.end(), time.begin() + j, time.begin() + k);
       rec_->accel.insert(rec_->accel.end(), c.accel.begin() + j, c.accel.begin() + k);
       if (gyro) {
@@ -185,7 +254,7 @@ void RowSink::AppendRows(const ChunkRows& c) {
       last_kept = k - 1;
     }
     if (k == rows) break;
-    if (time[k] != rec_->time_s.back()) ThrowTimeBack(c, k, last_kept);
+    if (time[k] != last_time_s_) ThrowTimeBack(c, k, last_kept);
     if (duplicates_++ == 0) first_duplicate_line_ = LineOf(c, k);
     j = k + 1;
   }
@@ -197,6 +266,7 @@ void RowSink::Append(const ChunkRows& c) {
   if (!cut_off_.held()) {
     Reserve(c);
     AppendRows(c);
+    HandOver();
     rows_before_ += c.time.size();
     if (c.failure_line > 0) {
       cut_off_.Hold(line_base_ + c.failure_line, c.failure);
@@ -208,53 +278,16 @@ void RowSink::Append(const ChunkRows& c) {
   if (!c.read_error.empty()) throw Error(ErrorKind::kIo, c.read_error);
 }
 
-// Gaps: steps much longer than the typical one (from up to 10,000 steps
-// spread over the log, so that this stays cheap).
-void RowSink::WarnGaps() {
-  const std::vector<double>& t = rec_->time_s;
-  if (t.size() < 3) return;
-  const std::size_t n = t.size() - 1;
-  const std::size_t stride = std::max<std::size_t>(1, n / 10000);
-  std::vector<double> steps;
-  for (std::size_t i = 0; i < n; i += stride) steps.push_back(t[i + 1] - t[i]);
-  std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
-  const double typical = steps[steps.size() / 2];
-  const double limit = 5.0 * typical;
-  std::size_t gaps = 0;
-  double largest = 0.0;
-  double largest_at = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double step = t[i + 1] - t[i];
-    if (step > limit) {
-      ++gaps;
-      if (step > largest) {
-        largest = step;
-        largest_at = t[i];
-      }
-    }
-  }
-  if (gaps == 0) return;
-  rec_->warnings.push_back(
-      fmt::format("{}: {} gap{} in time longer than 5 sample periods ({:.4g} s); the "
-                  "largest is {:.4g} s after t = {:.9g} s",
-                  rec_->source,
-                  gaps,
-                  gaps == 1 ? "" : "s",
-                  typical,
-                  largest,
-                  largest_at));
-}
-
 void RowSink::Finish(bool has_header) {
   if (cut_off_.held()) rec_->warnings.push_back(cut_off_.Warning(rec_->source));
-  if (rec_->empty()) {
+  if (rows_ == 0) {
     throw Error(ErrorKind::kInput,
                 fmt::format("'{}' has no data rows{}",
                             rec_->source,
                             has_header ? " after its header" : ""));
   }
   // Rows are in time order: the first and last times bound them all.
-  for (const double t : {rec_->time_s.front(), rec_->time_s.back()}) {
+  for (const double t : {first_time_s_, last_time_s_}) {
     if (std::abs(t) > kMaxTimeS) {
       throw Error(ErrorKind::kTime,
                   fmt::format("{}: a time of {:.6g} s is beyond any logger's clock (more "
@@ -273,7 +306,8 @@ void RowSink::Finish(bool has_header) {
                     duplicates_ == 1 ? "" : "s",
                     first_duplicate_line_));
   }
-  WarnGaps();
+  std::string gaps = gaps_.Warning(rec_->source);
+  if (!gaps.empty()) rec_->warnings.push_back(std::move(gaps));
 }
 
 }  // namespace mpcal::logio

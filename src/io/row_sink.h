@@ -3,12 +3,14 @@
 // counted, time going back refused (with a hint for a counter that wrapped),
 // a malformed last line dropped with a warning (a logger cut off mid-write)
 // but a malformed line with data after it refused, progress reported, gaps
-// and impossible times found at the end. Private to src/io.
+// and impossible times found. The rows are either held in a Recording or
+// handed over chunk by chunk (streaming). Private to src/io.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,7 +51,42 @@ class CutOffLine {
   std::string problem_;
 };
 
-/// Appends the rows of chunks, in file order, to a Recording.
+/// Gaps in time: steps longer than 5 typical ones. The typical step is the
+/// median of the first kTypicalSteps steps (held until there are that many,
+/// or until the end), so that the rule needs neither the whole record nor
+/// its length: reading a log whole or in pieces gives the same warning.
+class GapCounter {
+ public:
+  static constexpr std::size_t kTypicalSteps = 10000;
+  /// The next times (strictly increasing, after those added before).
+  void Add(std::span<const double> times_s);
+  /// The warning, "" when there is no gap, once every time was added.
+  std::string Warning(const std::string& source);
+
+ private:
+  void Settle();
+  void Step(double before, double after) {
+    const double step = after - before;
+    if (step <= limit_) return;
+    ++gaps_;
+    if (step > largest_) {
+      largest_ = step;
+      largest_at_ = before;
+    }
+  }
+
+  std::vector<double> early_;  // the first times, until the typical step is known
+  bool settled_ = false;
+  double last_ = 0.0;  // the last time added, once settled
+  double typical_ = 0.0;
+  double limit_ = 0.0;
+  std::size_t gaps_ = 0;
+  double largest_ = 0.0;
+  double largest_at_ = 0.0;
+};
+
+/// Appends the rows of chunks, in file order, to a Recording: all of them
+/// (holding), or each chunk's then handed over (streaming, see StreamTo).
 class RowSink {
  public:
   /// `time_scale`: seconds per unit of the time column (for messages and
@@ -61,7 +98,13 @@ class RowSink {
           std::size_t line_base,
           std::uint64_t total_bytes);
 
-  /// Appends a chunk's rows.
+  /// Streaming: after each chunk, `consume` is called with the Recording
+  /// holding that chunk's rows only, whose vectors are then cleared (their
+  /// capacity kept, so the memory is reused). Call before the first Append.
+  void StreamTo(std::function<void(const Recording&)> consume);
+
+  /// Appends a chunk's rows (and, streaming, hands them over: also those
+  /// before an error, which is thrown after).
   /// \throws mpcal::Error for time going back, a malformed line with data
   ///   after it, an overlong line or a read failure.
   void Append(const ChunkRows& c);
@@ -71,12 +114,17 @@ class RowSink {
   /// \throws mpcal::Error for no rows or a time beyond any clock.
   void Finish(bool has_header);
 
+  /// Rows kept so far (duplicates dropped), and the first and last time.
+  std::size_t rows() const { return rows_; }
+  double first_time_s() const { return first_time_s_; }
+  double last_time_s() const { return last_time_s_; }
+
  private:
   void Reserve(const ChunkRows& c);
   void AppendRows(const ChunkRows& c);
   [[noreturn]] void ThrowTimeBack(const ChunkRows& c, std::size_t row, std::size_t kept);
   std::size_t LineOf(const ChunkRows& c, std::size_t row) const;
-  void WarnGaps();
+  void HandOver();
 
   Recording* rec_;
   double time_scale_;
@@ -87,8 +135,13 @@ class RowSink {
   std::size_t duplicates_ = 0;
   std::size_t first_duplicate_line_ = 0;
   std::size_t previous_line_ = 0;  // of the last row kept
+  std::size_t rows_ = 0;           // kept, handed over or not
+  double first_time_s_ = 0.0;
+  double last_time_s_ = 0.0;  // of the last row kept
   bool reserved_ = false;
   CutOffLine cut_off_;
+  GapCounter gaps_;
+  std::function<void(const Recording&)> consume_;  // empty: holding
 };
 
 }  // namespace mpcal::logio
