@@ -163,8 +163,8 @@ void RowSink::HandOver() {
 
 // Sizes the arrays once, from the first row's length (or the chunk's
 // average, if shorter), so that a long log does not pay for repeated
-// doubling (and twice the memory).
-// Streaming needs no more than a chunk's rows, which the first chunk sizes.
+// doubling (and twice the memory). Not when streaming: the arrays then hold
+// a chunk's rows at most, and keep that capacity from chunk to chunk.
 void RowSink::Reserve(const ChunkRows& c) {
   const std::size_t rows = c.time.size();
   if (consume_ || reserved_ || rows == 0 || total_bytes_ == 0) return;
