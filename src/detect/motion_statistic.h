@@ -115,6 +115,7 @@ void ForEachWindow(std::span<const Eigen::Vector3d> a,
   if (n < first + half + 1) return;
   const std::size_t w = 2 * half + 1;
   // A copy, not a reference: read for every sample, kept in registers.
+  // NOLINTNEXTLINE(performance-unnecessary-copy-initialization)
   const Eigen::Vector3d ref = ref_reading;
   const std::size_t last = n - 1 - half;  // inclusive
   const std::size_t resync = ResyncWindows(w);
