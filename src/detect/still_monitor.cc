@@ -146,7 +146,11 @@ struct StillnessMonitor::State {
 
   // Sizes the window from the rows buffered so far (all rows until then).
   void SizeWindow() {
-    period_s = rows > 1 ? internal::TypicalPeriod(t) : 0.0;
+    // The first rows only, however many the first pieces brought.
+    const std::vector<double> first(
+        t.begin(),
+        t.begin() + static_cast<std::ptrdiff_t>(std::min(t.size(), kPeriodRows)));
+    period_s = first.size() > 1 ? internal::TypicalPeriod(first) : 0.0;
     half = internal::HalfWindowFor(options.window_s, period_s, kSource);
     next_centre = half;
     if (!a.empty()) ref = a.front();

@@ -185,6 +185,20 @@ TEST(StillnessMonitor, TheVerdictDoesNotDependOnHowTheRowsAreSplit) {
   }
 }
 
+TEST(StillnessMonitor, TheWindowIsSizedFromTheFirst4096Rows) {
+  // 200 Hz for the first 4096 rows, then slower and jittered (5-7 ms): the
+  // whole record's typical period is longer, the first rows' is 5 ms.
+  Rows r = StillMaker{.duration_s = 120.0}.Make();
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> dt(0.005, 0.007);
+  for (std::size_t i = 4096; i < r.t.size(); ++i) r.t[i] = r.t[i - 1] + dt(rng);
+  const StillVerdict whole = Feed(r);
+  EXPECT_NEAR(whole.sample_period_s, 0.005, 1e-12);
+  EXPECT_EQ(whole.window_samples, 201u);
+  ExpectSameVerdict(whole, Feed(r, OneRowPieces(r)));
+  ExpectSameVerdict(whole, Feed(r, RandomPieces(r, 4)));
+}
+
 TEST(StillnessMonitor, AReadingBeyondOneAndAHalfGIsAtTheRangeLimit) {
   Rows r = StillMaker{.duration_s = 60.0}.Make();
   r.a[4000].z() = 1.6 * kG;
