@@ -23,6 +23,9 @@
 /// counts). The cap is what lets a recording that never stops moving come out
 /// empty, with the reason, instead of its least-moving stretches being taken
 /// for positions: its quiet level is a motion level.
+///
+/// StillnessMonitor applies the same rule to rows as they arrive, for a
+/// caller that streams a long log: whether it was still throughout.
 #pragma once
 
 #include <cstddef>
