@@ -23,9 +23,13 @@
 /// counts). The cap is what lets a recording that never stops moving come out
 /// empty, with the reason, instead of its least-moving stretches being taken
 /// for positions: its quiet level is a motion level.
+///
+/// StillnessMonitor applies the same rule to rows as they arrive, for a
+/// caller that streams a long log: whether it was still throughout.
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -224,6 +228,84 @@ struct Turn {
 ///   window, its time does not increase, a reading is not finite, or the
 ///   options are invalid.
 DetectResult DetectStatic(const Recording& recording, const DetectOptions& options);
+
+/// Why a record is not still throughout (StillVerdict::reason).
+enum class NotStillReason {
+  kNone,        ///< still throughout
+  kMoved,       ///< a window's motion statistic is above the threshold
+  kRangeLimit,  ///< a reading at the sensor's range limit
+  kGap,         ///< a time step longer than the detection window
+  kTooShort,    ///< no verdict: fewer rows than one window, or raw counts
+  kNotFinite,   ///< a time or reading that is not finite
+};
+
+/// Whether a record is still from its first row to its last, by static
+/// detection's rule, and the figures behind it. Figures in the recording's
+/// units, times in the log's clock.
+struct StillVerdict {
+  bool still = false;  ///< reason == kNone
+  NotStillReason reason = NotStillReason::kTooShort;
+  /// As DetectResult::quiet_level and ::threshold (the cap applied).
+  double quiet_level = 0.0;
+  double threshold = 0.0;
+  /// The largest motion statistic of any window, and the time of that
+  /// window's centre (kMoved: where the sensor moved most).
+  double largest_statistic = 0.0;
+  double largest_at_s = 0.0;
+  /// kGap: the time before the gap; kRangeLimit: the time of the reading;
+  /// kNotFinite: the time of the row before it.
+  double gap_at_s = 0.0;
+  std::size_t windows = 0;  ///< windows judged
+  /// As DetectResult::window_samples and ::sample_period_s.
+  std::size_t window_samples = 0;
+  double sample_period_s = 0.0;
+};
+
+/// Decides, as the rows of a record arrive, whether the sensor was still
+/// throughout, in memory that does not grow with the record (a window, a
+/// few thousand buffered rows and at most 2^17 statistics): for a caller
+/// that streams a long log and wants all of it only when it never moved.
+///
+/// The rule is DetectStatic's: the window is sized from the typical period
+/// of the first 4096 rows; the motion statistic of every full window is the
+/// one DetectStatic computes (the same sums, bit for bit, however the rows
+/// are split); the quiet level is the `quiet_quantile` of a systematic
+/// sample of the statistics (every s-th window, s doubling as the record
+/// grows, so within a few percent of DetectStatic's exact quantile), at
+/// least half the reading step; the threshold is `threshold_factor` times
+/// it, capped at `max_still_g` as DetectStatic caps it. The record is still
+/// when every window is at or below the threshold, no reading is at the
+/// range limit (`range_mps2` given: 99 % of it in magnitude on any axis;
+/// 0: 1.5 g on any axis, which a still sensor never reads), no time step is
+/// longer than `window_s` (DetectStatic ends a still run there) and every
+/// value is finite. Of the reasons found row by row (kNotFinite, kRangeLimit,
+/// kGap) the first in time is reported; rows after a non-finite one are
+/// ignored. A record in raw counts has no known g (neither cap nor range):
+/// its rows are ignored and the verdict is kTooShort, no verdict.
+class StillnessMonitor {
+ public:
+  /// \throws mpcal::Error if the options are invalid.
+  StillnessMonitor(const DetectOptions& options, AccelUnits units);
+  ~StillnessMonitor();
+  StillnessMonitor(StillnessMonitor&&) noexcept;
+  StillnessMonitor& operator=(StillnessMonitor&&) noexcept;
+  StillnessMonitor(const StillnessMonitor&) = delete;
+  StillnessMonitor& operator=(const StillnessMonitor&) = delete;
+
+  /// Rows in time order (time strictly increasing across calls), split in
+  /// any way; `time_s` and `accel` of the same length.
+  /// \throws mpcal::Error if the lengths differ, time does not increase,
+  ///   or the window is shorter than two samples (as DetectStatic).
+  void Add(std::span<const double> time_s, std::span<const Eigen::Vector3d> accel);
+  /// The verdict over all rows added so far (callable at the end, or at any
+  /// time: windows not yet complete are not judged).
+  /// \throws mpcal::Error if the window is shorter than two samples.
+  StillVerdict Verdict() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 /// Each position grown to the motion on either side, for the turns between
 /// them. Detection keeps a position's samples away from the motion by half

@@ -60,22 +60,7 @@ std::size_t HalfWindow(const Recording& recording,
   const auto& t = recording.time_s;
   const std::size_t n = t.size();
   const double period = n > 1 ? internal::TypicalPeriod(t) : 0.0;
-  if (period > 0.0 && options.window_s < 2.0 * period) {
-    Advice advice;
-    advice.settings.push_back(
-        {Option::kDetectWindow, fmt::format("{:.3g}", 3.0 * period)});
-    throw Error(ErrorKind::kOption,
-                fmt::format("{}: the detection window of {} s is shorter than two "
-                            "samples ({:.4g} s apart)",
-                            src,
-                            options.window_s,
-                            period),
-                advice);
-  }
-  std::size_t half =
-      period > 0.0 ? static_cast<std::size_t>(std::lround(options.window_s / period / 2))
-                   : 1;
-  half = std::max<std::size_t>(half, 1);
+  const std::size_t half = internal::HalfWindowFor(options.window_s, period, src);
   const std::size_t w = 2 * half + 1;
   result->window_samples = w;
   result->sample_period_s = period;

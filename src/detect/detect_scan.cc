@@ -34,6 +34,24 @@ double TypicalPeriod(const std::vector<double>& t) {
   return sum / static_cast<double>(count);
 }
 
+std::size_t HalfWindowFor(double window_s, double period_s, const std::string& src) {
+  if (period_s > 0.0 && window_s < 2.0 * period_s) {
+    Advice advice;
+    advice.settings.push_back(
+        {Option::kDetectWindow, fmt::format("{:.3g}", 3.0 * period_s)});
+    throw Error(ErrorKind::kOption,
+                fmt::format("{}: the detection window of {} s is shorter than two "
+                            "samples ({:.4g} s apart)",
+                            src,
+                            window_s,
+                            period_s),
+                advice);
+  }
+  const std::size_t half =
+      period_s > 0.0 ? static_cast<std::size_t>(std::lround(window_s / period_s / 2)) : 1;
+  return std::max<std::size_t>(half, 1);
+}
+
 SampleScan CheckAndScan(const Recording& recording, const std::string& src) {
   const auto& t = recording.time_s;
   const auto& a = recording.accel;

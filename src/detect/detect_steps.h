@@ -24,6 +24,13 @@ namespace mpcal::internal {
 /// spaced 6, 6, 7, 6 ms) still give the true rate. Needs 2 samples or more.
 double TypicalPeriod(const std::vector<double>& t);
 
+/// Half the moving window in samples for the typical sample period
+/// `period_s` (0: unknown): lround(window_s / period_s / 2), 1 at least, so
+/// that the window of 2 half + 1 samples is centred on its sample. Throws
+/// mpcal::Error when the window is shorter than two samples (it would
+/// silently be three); `src` names the recording.
+std::size_t HalfWindowFor(double window_s, double period_s, const std::string& src);
+
 /// What detection needs from every sample, found in one pass over them.
 struct SampleScan {
   /// The reading step of a quantised log (ADC counts, or values printed with

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -80,30 +81,50 @@ double QuantileOf(std::vector<double> sample,
   return inside[static_cast<std::size_t>(k)];
 }
 
-// The motion statistic of the window of 2 half + 1 samples centred on each
-// sample c in [half, n - 1 - half], in order: visit(c, statistic). By
-// sliding sums over readings centred on the first one (counts near 32768
-// would otherwise lose their noise to cancellation). The sums are redone
-// from scratch every `resync` steps so that rounding cannot build up over
-// millions of samples.
+// The running sums of ForEachWindow, carried from one stretch of readings to
+// the next so that a record fed in pieces gives the statistic of every
+// window bit for bit as in one piece.
+struct WindowSums {
+  Eigen::Vector3d s1 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d s2 = Eigen::Vector3d::Zero();
+  // Windows until the sums are redone from scratch (0: the next one is).
+  std::size_t until_resync = 0;
+};
+
+// How often ForEachWindow redoes its sums (windows), for a window of w.
+inline std::size_t ResyncWindows(std::size_t w) {
+  return std::max<std::size_t>(4096, 8 * w);
+}
+
+// The motion statistic of the window of 2 half + 1 readings centred on each
+// a[c], c in [first, a.size() - 1 - half], in order: visit(c, statistic). By
+// sliding sums (`sums`, carried over and updated) over readings centred on
+// `ref` (the record's first reading: counts near 32768 would otherwise lose
+// their noise to cancellation). The sums are redone from scratch every
+// ResyncWindows(w) windows so that rounding cannot build up over millions of
+// samples. Unless `sums` are due to be redone, they must hold the window
+// centred on first - 1, and first > half (the reading leaving is read).
 template <typename Visit>
-void ForEachWindow(const std::vector<Eigen::Vector3d>& a,
+void ForEachWindow(std::span<const Eigen::Vector3d> a,
                    std::size_t half,
+                   std::size_t first,
+                   const Eigen::Vector3d& ref_reading,
+                   WindowSums* sums,
                    Visit&& visit) {
   const std::size_t n = a.size();
+  if (n < first + half + 1) return;
   const std::size_t w = 2 * half + 1;
   // A copy, not a reference: read for every sample, kept in registers.
   // NOLINTNEXTLINE(performance-unnecessary-copy-initialization)
-  const Eigen::Vector3d ref = a[0];
-  const std::size_t first = half;
+  const Eigen::Vector3d ref = ref_reading;
   const std::size_t last = n - 1 - half;  // inclusive
-  const std::size_t resync = std::max<std::size_t>(4096, 8 * w);
-  Eigen::Vector3d s1 = Eigen::Vector3d::Zero();
-  Eigen::Vector3d s2 = Eigen::Vector3d::Zero();
+  const std::size_t resync = ResyncWindows(w);
+  Eigen::Vector3d s1 = sums->s1;
+  Eigen::Vector3d s2 = sums->s2;
   // Multiplications: six divisions per sample were a third of detection.
   const double inv_w = 1.0 / static_cast<double>(w);
   const double inv_w1 = 1.0 / static_cast<double>(w - 1);
-  std::size_t until_resync = 0;  // (c - first) % resync, without a division
+  std::size_t until_resync = sums->until_resync;
   for (std::size_t c = first; c <= last; ++c) {
     const std::size_t lo = c - half;
     const std::size_t hi = c + half;  // inclusive
@@ -125,6 +146,25 @@ void ForEachWindow(const std::vector<Eigen::Vector3d>& a,
     const Eigen::Vector3d var = ((s2 - s1.cwiseAbs2() * inv_w) * inv_w1).cwiseMax(0.0);
     visit(c, std::sqrt(var.sum()));
   }
+  sums->s1 = s1;
+  sums->s2 = s2;
+  sums->until_resync = until_resync;
+}
+
+// The motion statistic of every window of a whole record, centred on each
+// sample c in [half, n - 1 - half], in order: visit(c, statistic).
+template <typename Visit>
+void ForEachWindow(const std::vector<Eigen::Vector3d>& a,
+                   std::size_t half,
+                   Visit&& visit) {
+  if (a.empty()) return;
+  WindowSums sums;
+  ForEachWindow(std::span<const Eigen::Vector3d>(a),
+                half,
+                half,
+                a[0],
+                &sums,
+                std::forward<Visit>(visit));
 }
 
 }  // namespace mpcal::internal
