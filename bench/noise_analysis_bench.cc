@@ -30,12 +30,10 @@ std::vector<Eigen::Vector3d> WhiteSamples(std::size_t n) {
 void BM_SensorAnalysis8h400Hz(benchmark::State& state) {
   const std::vector<Eigen::Vector3d> samples = WhiteSamples(kSamples);
   for (auto _ : state) {
-    state.PauseTiming();
-    std::vector<Eigen::Vector3d> copy = samples;
-    state.ResumeTiming();
-    const mpcal::CumulativeSums3 sums = mpcal::CumulativeSums3::FromSamples(
-        std::move(copy), 0, kSamples, 1.0, 1.0 / 400.0);
-    const mpcal::SensorNoise r = mpcal::AnalyseSensorNoise(sums, mpcal::NoiseOptions{});
+    mpcal::AllanSums sums(mpcal::AllanOptions{});
+    sums.Add(samples.data(), samples.size());
+    const mpcal::SensorNoise r =
+        mpcal::AnalyseSensorNoise(sums, 1.0, 1.0 / 400.0, mpcal::NoiseOptions{});
     benchmark::DoNotOptimize(r.axes[0].curve.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(kSamples));
@@ -46,11 +44,11 @@ BENCHMARK(BM_SensorAnalysis8h400Hz)->Unit(benchmark::kMillisecond)->UseRealTime(
 // curve: what is left once the Allan sums are done.
 void BM_TermsFromCurve(benchmark::State& state) {
   const std::vector<Eigen::Vector3d> samples = WhiteSamples(1 << 20);
-  std::vector<Eigen::Vector3d> copy = samples;
-  const mpcal::CumulativeSums3 sums =
-      mpcal::CumulativeSums3::FromSamples(std::move(copy), 0, 1 << 20, 1.0, 0.0025);
+  mpcal::AllanSums sums(mpcal::AllanOptions{});
+  sums.Add(samples.data(), samples.size());
   for (auto _ : state) {
-    const mpcal::SensorNoise r = mpcal::AnalyseSensorNoise(sums, mpcal::NoiseOptions{});
+    const mpcal::SensorNoise r =
+        mpcal::AnalyseSensorNoise(sums, 1.0, 0.0025, mpcal::NoiseOptions{});
     benchmark::DoNotOptimize(r.axes[0].curve.data());
   }
 }

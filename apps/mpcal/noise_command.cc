@@ -3,9 +3,11 @@
 // not, and the files filters want (JSON, Kalibr's imu.yaml).
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include <fmt/format.h>
@@ -148,22 +150,132 @@ void PrintFindings(const SensorNoise& s, bool gyro, const NoiseResult& r) {
   }
 }
 
-// The samples to analyse: all of them with --whole, else as detection finds.
-std::optional<NoiseSegment> ChooseSegment(const NoiseFlags& f,
-                                          const Recording& rec,
-                                          double span_s) {
-  if (f.whole) return NoiseSegment{NoiseSegmentKind::kWholeRecord, 0, rec.size(), 0};
+// What was read and which part of it was analysed.
+struct Analysis {
+  NoiseResult result;
+  std::size_t rows = 0;
+  double span_s = 0.0;
+  bool has_gyro = false;
+  std::vector<std::string> warnings;
+  std::string which;  // the part analysed, in words
+};
+
+// Why the stream could not take the whole record, in words.
+std::string WhyNotStill(const StillVerdict& v) {
+  switch (v.reason) {
+    case NotStillReason::kNone:
+      return "";
+    case NotStillReason::kMoved:
+      return fmt::format("the sensor moved near t = {:.1f} s", v.largest_at_s);
+    case NotStillReason::kRangeLimit:
+      return fmt::format("a reading at the range limit at t = {:.1f} s", v.gap_at_s);
+    case NotStillReason::kGap:
+      return fmt::format("a gap in time after t = {:.1f} s", v.gap_at_s);
+    case NotStillReason::kTooShort:
+      return "the record is shorter than one detection window";
+    case NotStillReason::kNotFinite:
+      return "a reading is not a number";
+  }
+  return "";
+}
+
+// The analysis of a held recording whose stream found motion: detection's
+// longest still part (or its whole, when detection finds no motion).
+void AnalyseDetected(const NoiseFlags& f, const Recording& rec, Analysis* a) {
   const DetectResult det = DetectStatic(rec, f.calibrate.detect);
-  std::optional<NoiseSegment> segment = ChooseNoiseSegment(rec, det);
+  const std::optional<NoiseSegment> segment = ChooseNoiseSegment(rec, det);
   if (!segment) {
     throw Error(
         fmt::format("{}: no still part found in {:.1f} s ({}); if the sensor was "
                     "still, give --whole to analyse all of it",
                     f.input,
-                    span_s,
+                    a->span_s,
                     ExplainDetection(det.finding)));
   }
-  return segment;
+  TerminalProgress analysing("analysing");
+  a->result = AnalyseNoise(rec, *segment, *FixedMps2PerUnit(rec.units), f.noise);
+  analysing.Done();
+  a->which = segment->kind == NoiseSegmentKind::kWholeRecord
+                 ? "the whole record (detection found the sensor still throughout)"
+                 : fmt::format(
+                       "the longest still part, {:.1f}-{:.1f} s, of {} found by "
+                       "detection (the sensor moved)",
+                       rec.time_s[segment->begin] - rec.time_s.front(),
+                       rec.time_s[segment->end - 1] - rec.time_s.front(),
+                       segment->static_intervals);
+}
+
+// A log that can be read twice: a regular file (not standard input or a pipe).
+bool CanReadTwice(const std::string& input) {
+  std::error_code ec;
+  return input != "-" && std::filesystem::is_regular_file(input, ec);
+}
+
+// Reads the log into the stream: a file row by row, holding none of it;
+// standard input whole (it cannot be read again), kept for detection.
+std::optional<Recording> ReadInto(NoiseFlags& f,
+                                  NoiseStream* stream,
+                                  UnitsEvidence* evidence,
+                                  Analysis* a) {
+  TerminalProgress progress("reading " + f.input);
+  f.log.progress = progress.Callback();
+  std::optional<Recording> held;
+  if (CanReadTwice(f.input)) {
+    const LogStreamSummary s =
+        ReadLogRows(f.input, f.log, [&](const Recording& rows) {
+          evidence->Add(rows, 0, rows.size());
+          stream->Add(rows);
+        });
+    a->rows = s.rows;
+    a->span_s = s.last_time_s - s.first_time_s;
+    a->warnings = s.warnings;
+  } else {
+    held = ReadLog(f.input, f.log);
+    *evidence = UnitsEvidence::Of(*held);
+    stream->Add(*held);
+    a->rows = held->size();
+    a->span_s = held->time_s.back() - held->time_s.front();
+    a->warnings = held->warnings;
+  }
+  progress.Done();
+  f.log.progress = nullptr;
+  a->has_gyro = stream->has_gyro();
+  return held;
+}
+
+// Reads and analyses: the whole record from the stream when the sensor never
+// moved (or with --whole); else detection's longest still part, from the
+// log read again.
+Analysis Analyse(NoiseFlags& f) {
+  Analysis a;
+  NoiseStream stream(f.noise, f.whole ? nullptr : &f.calibrate.detect, f.log.units);
+  UnitsEvidence evidence;
+  std::optional<Recording> held = ReadInto(f, &stream, &evidence, &a);
+  WithDetectWords([&] { CheckUnits(evidence, f.gravity.Resolve()); });
+  if (!f.kalibr.empty() && !a.has_gyro) {
+    throw Error(f.input +
+                ": Kalibr's imu.yaml needs the gyroscope, and the log has none "
+                "(give its columns with --columns ...,gx=..,gy=..,gz=..)");
+  }
+  const std::optional<StillVerdict> still = stream.Stillness();
+  if (!still || still->still) {
+    const NoiseSegment whole{NoiseSegmentKind::kWholeRecord, 0, stream.rows(), 1};
+    a.result = stream.Finish(*FixedMps2PerUnit(f.log.units), whole);
+    a.which = still ? "the whole record (detection found the sensor still throughout)"
+                    : "the whole record (--whole: detection not run)";
+    return a;
+  }
+  fmt::print("  note: {}: finding its longest still part{}\n",
+             WhyNotStill(*still),
+             held ? "" : " (reading the log again)");
+  if (!held) {
+    TerminalProgress progress("reading " + f.input + " again");
+    f.log.progress = progress.Callback();
+    held = ReadLog(f.input, f.log);
+    progress.Done();
+  }
+  AnalyseDetected(f, *held, &a);
+  return a;
 }
 
 // The JSON and Kalibr files asked for, and a warning for each Kalibr value
@@ -207,44 +319,16 @@ void Run(NoiseFlags& f) {
         "counts, calibrate first and convert with 'mpcal apply')");
   }
 
-  TerminalProgress progress("reading " + f.input);
-  f.log.progress = progress.Callback();
-  Recording rec = ReadLog(f.input, f.log);
-  progress.Done();
-  WithDetectWords([&] { CheckUnits(rec, f.gravity.Resolve()); });
-  const bool has_gyro = rec.gyro_radps.size() == rec.size();
-  if (!f.kalibr.empty() && !has_gyro) {
-    throw Error(f.input +
-                ": Kalibr's imu.yaml needs the gyroscope, and the log has none "
-                "(give its columns with --columns ...,gx=..,gy=..,gz=..)");
-  }
-  const std::size_t rows = rec.size();
-  const double span_s = rec.time_s.back() - rec.time_s.front();
-  for (const auto& w : rec.warnings) fmt::print("  note: {}\n", w);
-
-  const std::optional<NoiseSegment> segment = ChooseSegment(f, rec, span_s);
-  const double mps2_per_unit = *FixedMps2PerUnit(rec.units);
-  TerminalProgress analysing("analysing");
-  const NoiseResult r = AnalyseNoise(std::move(rec), *segment, mps2_per_unit, f.noise);
-  analysing.Done();
-
+  const Analysis a = Analyse(f);
+  const NoiseResult& r = a.result;
+  for (const auto& w : a.warnings) fmt::print("  note: {}\n", w);
   fmt::print("{}: {} rows, {:.2f} h at {:.6g} Hz{}\n",
              f.input,
-             rows,
-             span_s / 3600.0,
+             a.rows,
+             a.span_s / 3600.0,
              r.rate_hz,
-             has_gyro ? ", accelerometer and gyroscope" : ", accelerometer");
-  const std::string which =
-      f.whole ? "the whole record (--whole: detection not run)"
-      : segment->kind == NoiseSegmentKind::kWholeRecord
-          ? "the whole record (detection found the sensor still throughout)"
-          : fmt::format(
-                "the longest still part, {:.1f}-{:.1f} s, of {} found by detection "
-                "(the sensor moved)",
-                static_cast<double>(segment->begin) * r.sample_period_s,
-                static_cast<double>(segment->end) * r.sample_period_s,
-                segment->static_intervals);
-  fmt::print("analysed: {}: {} samples, {}\n", which, r.samples, Hours(r.record_s));
+             a.has_gyro ? ", accelerometer and gyroscope" : ", accelerometer");
+  fmt::print("analysed: {}: {} samples, {}\n", a.which, r.samples, Hours(r.record_s));
   if (r.gaps > 0) {
     fmt::print(
         "  note: {} gaps in time (samples lost); they are treated as evenly spaced\n",

@@ -17,6 +17,7 @@
 #include "mpcal/gyro.h"
 #include "mpcal/recording.h"
 #include "mpcal/solve.h"
+#include "mpcal/systematic_sample.h"
 
 namespace mpcal {
 
@@ -113,6 +114,23 @@ class SessionError : public Error {
   CoverageResult coverage_;
 };
 
+/// What CheckUnits judges a log's units by, gathered as its rows arrive
+/// (Add) or from a whole recording (Of): the accelerometer's magnitudes (a
+/// SystematicSample, for their median) and the gyroscope's largest reading.
+struct UnitsEvidence {
+  std::string source;
+  AccelUnits units = AccelUnits::kMps2;
+  GyroUnits gyro_units = GyroUnits::kRadps;
+  bool has_gyro = false;
+  std::size_t rows = 0;
+  SystematicSample magnitudes;
+  double largest_gyro = 0.0;  ///< max |ω| over axes and rows, the log's unit
+
+  static UnitsEvidence Of(const Recording& recording);
+  /// Rows [begin, end) of `part` (the first call sets source and units).
+  void Add(const Recording& part, std::size_t begin, std::size_t end);
+};
+
 /// Catches a log in one unit read as another from the magnitude of its
 /// readings, before detection (read in the wrong unit, the noise at rest looks
 /// ten times too large or too small and detection would fail for the wrong
@@ -124,6 +142,8 @@ class SessionError : public Error {
 ///   the gyroscope's units in its Advice) when a gyroscope read in rad/s
 ///   reaches beyond 70 rad/s (4000 deg/s, the largest full scale of MEMS
 ///   gyroscopes): deg/s, or raw counts, read as rad/s.
+void CheckUnits(const UnitsEvidence& evidence, double gravity_mps2);
+/// CheckUnits on the evidence of a whole recording.
 void CheckUnits(const Recording& recording, double gravity_mps2);
 
 /// The turns between neighbouring positions (in time order, as DetectStatic

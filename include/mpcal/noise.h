@@ -46,6 +46,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -56,6 +57,7 @@
 #include "mpcal/calibration.h"
 #include "mpcal/detect.h"
 #include "mpcal/recording.h"
+#include "mpcal/systematic_sample.h"
 
 namespace mpcal {
 
@@ -89,34 +91,6 @@ struct AllanOptions {
   std::string Validate() const;
 };
 
-/// The cumulative sums of a 3-axis record: all the Allan deviation needs.
-/// θ_0 = 0, θ_k = Σ_{i<k} (y_i − ȳ) in SI units × samples (the mean is
-/// removed first so that the sums stay small and keep their precision in
-/// double; the running sum is accumulated in long double).
-class CumulativeSums3 {
- public:
-  CumulativeSums3() = default;
-  /// Builds the sums of samples[begin, end) × `si_per_unit` IN PLACE: the
-  /// vector's storage is reused, so memory does not grow beyond the samples.
-  /// `sample_period_s` > 0 is τ0. Requires begin < end ≤ samples.size().
-  static CumulativeSums3 FromSamples(std::vector<Eigen::Vector3d>&& samples,
-                                     std::size_t begin,
-                                     std::size_t end,
-                                     double si_per_unit,
-                                     double sample_period_s);
-  /// Number of cumulative sums (samples used + 1).
-  std::size_t size() const { return theta_.size(); }
-  double sample_period_s() const { return sample_period_s_; }
-  /// The mean removed, per axis, in SI units.
-  const Eigen::Vector3d& mean_si() const { return mean_si_; }
-  const std::vector<Eigen::Vector3d>& theta() const { return theta_; }
-
- private:
-  std::vector<Eigen::Vector3d> theta_;
-  double sample_period_s_ = 0.0;
-  Eigen::Vector3d mean_si_ = Eigen::Vector3d::Zero();
-};
-
 /// One cluster time of an Allan curve.
 struct AllanPoint {
   double tau_s = 0.0;
@@ -131,12 +105,57 @@ struct AllanPoint {
   NoiseTerm dominant = NoiseTerm::kWhiteNoise;  ///< noise type used for the EDF
 };
 
-/// The overlapping Allan variance of each axis at log-spaced τ (EDF and
-/// intervals still at their white-noise defaults; AnalyseSensorNoise sets
-/// them from the fitted terms). Runs on the calling thread.
-/// \throws mpcal::Error when fewer than 8 samples or invalid options.
-std::array<std::vector<AllanPoint>, 3> OverlappingAllan(const CumulativeSums3& sums,
-                                                        const AllanOptions& options);
+/// The overlapping Allan variance of a 3-axis rate signal, summed as its
+/// samples arrive (in time order, split anyhow): a record of any length is
+/// analysed without holding it. The cumulative sums θ_k = Σ_{i<k} (y_i − y_0)
+/// (about the first sample, so that they stay small and keep their digits;
+/// the running sum in long double) feed the squared second differences of
+/// every cluster size whose stride is below kFarStride at once, from the
+/// last 2 m sums; the sums at multiples of kFarStride are kept (1/64 of the
+/// samples), which is all the larger cluster sizes read: their strides are
+/// powers of two of at least kFarStride and their m multiples of them.
+/// Memory: 3 doubles per 64 samples. The result does not depend on how the
+/// samples were split (up to rounding).
+class AllanSums {
+ public:
+  /// Cluster sizes whose stride is at least this are summed at the end.
+  static constexpr std::int64_t kFarStride = 64;
+
+  /// \throws mpcal::Error (kOption) for invalid options.
+  explicit AllanSums(const AllanOptions& options);
+  /// Adds `count` samples, in the signal's own unit.
+  void Add(const Eigen::Vector3d* samples, std::size_t count);
+  /// Samples added.
+  std::size_t samples() const { return samples_; }
+  /// Their mean, in their unit.
+  Eigen::Vector3d Mean() const;
+  /// The Allan variance of each axis at the log-spaced cluster times of the
+  /// samples added (AllanOptions), scaled to SI by `si_per_unit`, τ = m ×
+  /// `sample_period_s` (EDF and intervals still at their white-noise
+  /// defaults; AnalyseSensorNoise sets them from the fitted terms).
+  /// \throws mpcal::Error when fewer than 8 samples.
+  std::array<std::vector<AllanPoint>, 3> Curves(double si_per_unit,
+                                                       double sample_period_s) const;
+
+ private:
+  struct Near {
+    std::int64_t m = 0;
+    std::int64_t stride = 1;
+    std::int64_t next_start = 0;  // the first start index not summed yet
+    std::array<long double, 3> total{};
+  };
+  void SumNear();
+
+  AllanOptions options_;
+  std::size_t samples_ = 0;
+  Eigen::Vector3d first_ = Eigen::Vector3d::Zero();
+  std::array<long double, 3> run_{};  // θ of the last sample added
+  std::vector<Near> near_;
+  std::int64_t history_ = 0;     // sums kept before the new ones: 2 × largest near m
+  std::vector<double> recent_;   // θ_{base_} ... θ_{samples_}, 3 doubles each
+  std::int64_t base_ = 0;        // index of recent_'s first sum
+  std::vector<double> far_;      // θ_0, θ_64, θ_128, ...
+};
 
 /// EDF of the overlapping Allan variance at m for N phase points and the
 /// given dominant term (NIST SP 1065 Table 5, Howe, Allan & Barnes 1981).
@@ -225,9 +244,13 @@ struct SensorNoise {
   Eigen::Vector3d mean_si = Eigen::Vector3d::Zero();
 };
 
-/// Allan curves and terms of a sensor's cumulative sums.
-/// \throws mpcal::Error as OverlappingAllan.
-SensorNoise AnalyseSensorNoise(const CumulativeSums3& sums, const NoiseOptions& options);
+/// Allan curves and terms of a sensor from its sums (AllanSums::Curves
+/// with the same `si_per_unit` and `sample_period_s`).
+/// \throws mpcal::Error as AllanSums::Curves, or for invalid options.
+SensorNoise AnalyseSensorNoise(const AllanSums& sums,
+                               double si_per_unit,
+                               double sample_period_s,
+                               const NoiseOptions& options);
 
 /// Which samples of a recording were analysed.
 enum class NoiseSegmentKind {
@@ -264,12 +287,65 @@ struct NoiseResult {
   std::optional<SensorNoise> gyro_radps;
 };
 
-/// Analyses recording[segment] (consumed: its samples become the sums).
-/// `accel_mps2_per_unit`: the factor from the log's units to m/s².
-/// Accelerometer and gyroscope run on two threads.
-/// \throws mpcal::Error for invalid options, fewer than 8 samples, or a
+/// The noise of a record analysed as its rows arrive (in time order, split
+/// anyhow), none of them held: the Allan sums of both sensors (AllanSums),
+/// the sample period and the gaps, and, when asked, whether the sensor
+/// stayed still throughout by detection's rule (StillnessMonitor). Memory:
+/// a few MB for a record of any length.
+///
+/// The sample period τ0 is the median of a systematic sample of the time
+/// steps (SystematicSample); a gap is a step longer than 1.5 times the
+/// median of the first 1,024 steps (known before the record ends).
+class NoiseStream {
+ public:
+  /// `stillness`: judge stillness with these detection options (nullptr:
+  /// not judged). `accel_units`: the accelerometer's units (for the range
+  /// limits of the stillness judgement).
+  NoiseStream(const NoiseOptions& options,
+              const DetectOptions* stillness,
+              AccelUnits accel_units);
+  ~NoiseStream();
+  NoiseStream(const NoiseStream&) = delete;
+  NoiseStream& operator=(const NoiseStream&) = delete;
+
+  /// Adds rows [begin, end) of `rows` (its gyroscope empty, or one reading
+  /// per row, the same in every call). Large blocks run the gyroscope's
+  /// sums on a second thread.
+  void Add(const Recording& rows, std::size_t begin, std::size_t end);
+  void Add(const Recording& rows) { Add(rows, 0, rows.size()); }
+  std::size_t rows() const { return rows_; }
+  bool has_gyro() const { return has_gyro_; }
+  /// Unset when stillness is not judged.
+  std::optional<StillVerdict> Stillness() const;
+  /// The analysis of the rows added, as `segment` of the recording.
+  /// `accel_mps2_per_unit`: the factor from the log's units to m/s².
+  /// \throws mpcal::Error for fewer than 9 rows, no time step, or invalid
+  ///   options.
+  NoiseResult Finish(double accel_mps2_per_unit, const NoiseSegment& segment) const;
+
+ private:
+  void AddSteps(const std::vector<double>& t, std::size_t begin, std::size_t end);
+
+  NoiseOptions options_;
+  std::string source_;
+  std::size_t rows_ = 0;
+  bool has_gyro_ = false;
+  AllanSums accel_;
+  AllanSums gyro_;
+  std::unique_ptr<StillnessMonitor> stillness_;
+  SystematicSample steps_;
+  double last_time_s_ = 0.0;
+  std::vector<double> first_steps_;  // until the gap reference is known
+  double gap_reference_s_ = 0.0;     // 0 until then
+  std::size_t gaps_ = 0;
+};
+
+/// Analyses recording[segment] (a NoiseStream over it, not judging
+/// stillness). `accel_mps2_per_unit`: the factor from the log's units to
+/// m/s².
+/// \throws mpcal::Error for invalid options, fewer than 9 samples, or a
 ///   segment outside the recording.
-NoiseResult AnalyseNoise(Recording&& recording,
+NoiseResult AnalyseNoise(const Recording& recording,
                          const NoiseSegment& segment,
                          double accel_mps2_per_unit,
                          const NoiseOptions& options);

@@ -14,6 +14,7 @@
 #include "motion_statistic.h"
 #include "mpcal/detect.h"
 #include "mpcal/error.h"
+#include "mpcal/systematic_sample.h"
 #include "mpcal/units.h"
 
 namespace mpcal {
@@ -57,12 +58,12 @@ struct StillnessMonitor::State {
   std::size_t base = 0;
   std::size_t next_centre = 0;  // row of the next window centre to judge
 
-  // The statistics: how many, the largest, and every stride-th of them.
+  // The statistics: how many, the largest, and a sample of them (the same
+  // windows whatever the split).
   std::size_t windows = 0;
   double largest = 0.0;
   double largest_at_s = 0.0;
-  std::vector<double> kept;
-  std::size_t stride = 1;
+  SystematicSample kept{kMaxKept};
 
   void NoteEvent(NotStillReason reason, double at_s) {
     if (event != NotStillReason::kNone) return;
@@ -162,16 +163,7 @@ struct StillnessMonitor::State {
       largest = v;
       largest_at_s = t[c];
     }
-    // Window j is kept when j is a multiple of the stride: the same
-    // windows whatever the split.
-    if ((windows & (stride - 1)) == 0) {
-      kept.push_back(v);
-      if (kept.size() > kMaxKept) {
-        for (std::size_t i = 0; 2 * i < kept.size(); ++i) kept[i] = kept[2 * i];
-        kept.resize((kept.size() + 1) / 2);
-        stride *= 2;
-      }
-    }
+    kept.Add(v);
     ++windows;
   }
 
@@ -210,7 +202,7 @@ StillVerdict StillnessMonitor::State::VerdictOfSized() const {
   if (windows > 0) {
     const double step_floor = std::isfinite(step) ? 0.5 * step : 0.0;
     v.quiet_level =
-        std::max(internal::Quantile(kept, options.quiet_quantile), step_floor);
+        std::max(kept.Quantile(options.quiet_quantile), step_floor);
     v.threshold = options.threshold_factor * v.quiet_level;
     const double cap = options.max_still_g * one_g;
     if (cap > 0.0 && cap < v.threshold) {

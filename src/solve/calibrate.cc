@@ -20,24 +20,6 @@
 namespace mpcal {
 namespace {
 
-// The magnitude of a static mean in m/s² may differ from g by the sensor's
-// own errors (consumer parts: up to ~0.5 g of bias and 10 % of scale); far
-// outside this band the units are wrong, not the sensor.
-constexpr double kPlausibleRestRatioLow = 0.5;
-constexpr double kPlausibleRestRatioHigh = 1.6;
-
-// Median magnitude of the readings, on every 16th sample: a hand-held
-// session is mostly at rest, and during turns |a| stays near g as well.
-double MedianMagnitude(const Recording& recording) {
-  constexpr std::size_t kStride = 16;
-  std::vector<double> m;
-  m.reserve(recording.size() / kStride + 1);
-  for (std::size_t i = 0; i < recording.size(); i += kStride)
-    m.push_back(recording.accel[i].norm());
-  std::nth_element(m.begin(), m.begin() + m.size() / 2, m.end());
-  return m[m.size() / 2];
-}
-
 // The mean gyroscope reading over a position (raw units): its bias at rest.
 Eigen::Vector3d GyroMean(const Recording& r, const StaticInterval& iv) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -161,92 +143,6 @@ std::vector<Turn> MeasureTurns(const Recording& recording,
     turns.push_back(turn);
   }
   return turns;
-}
-
-namespace {
-
-// The largest full scale of MEMS gyroscopes (4000 deg/s, about 70 rad/s):
-// a log in rad/s that reaches beyond it holds deg/s (or counts).
-constexpr double kMaxGyroRadps = 4000.0 * std::numbers::pi / 180.0;
-
-void CheckGyroUnits(const Recording& recording) {
-  if (recording.gyro_units != GyroUnits::kRadps ||
-      recording.gyro_radps.size() != recording.size()) {
-    return;
-  }
-  double largest = 0.0;
-  for (const Eigen::Vector3d& w : recording.gyro_radps) {
-    largest = std::max(largest, w.cwiseAbs().maxCoeff());
-  }
-  if (!(largest > kMaxGyroRadps)) return;
-  const bool dps = largest * std::numbers::pi / 180.0 <= kMaxGyroRadps;
-  throw Error(
-      ErrorKind::kUnits,
-      fmt::format("{}: the gyroscope reaches {:.4g} rad/s, beyond the {:.0f} rad/s "
-                  "(4000 deg/s) full scale of MEMS gyroscopes; the readings look "
-                  "like {}",
-                  recording.source,
-                  largest,
-                  kMaxGyroRadps,
-                  dps ? "deg/s" : "raw ADC counts"),
-      Advice{{{Option::kLogGyroUnits, dps ? "dps" : "counts"}}, Stage::kNone, ""});
-}
-
-}  // namespace
-
-void CheckUnits(const Recording& recording, double gravity_mps2) {
-  CheckGyroUnits(recording);
-  if (!IsPlausibleGravity(gravity_mps2)) {
-    throw Error(ErrorKind::kOption,
-                fmt::format("gravity {} m/s2 is outside the plausible {}-{} m/s2",
-                            gravity_mps2,
-                            kMinGravityMps2,
-                            kMaxGravityMps2),
-                Advice{{{Option::kGravity, ""}}, Stage::kNone, ""});
-  }
-  if (recording.empty() || recording.units == AccelUnits::kCounts) return;
-  UnitsError::Finding f;
-  f.source = recording.source;
-  f.units = recording.units;
-  f.gravity_mps2 = gravity_mps2;
-  const double per_unit = *FixedMps2PerUnit(f.units);
-  const double ratio = MedianMagnitude(recording) * per_unit / gravity_mps2;
-  if (ratio >= kPlausibleRestRatioLow && ratio <= kPlausibleRestRatioHigh) return;
-  f.median_magnitude = ratio * gravity_mps2 / per_unit;
-  Advice advice;
-  std::string looks;
-  if (f.units == AccelUnits::kMps2 && std::abs(f.median_magnitude - 1.0) < 0.5) {
-    f.guess = UnitsGuess::kG;
-    looks = "g";
-  } else if (f.units == AccelUnits::kG &&
-             std::abs(f.median_magnitude / kStandardGravityMps2 - 1.0) < 0.5) {
-    f.guess = UnitsGuess::kMps2;
-    looks = "m/s2";
-  } else if (ratio * gravity_mps2 / kStandardGravityMps2 > 20.0) {
-    f.guess = UnitsGuess::kCounts;
-    looks = "raw ADC counts";
-  }
-  if (f.guess == UnitsGuess::kUnknown) {
-    advice.settings = {{Option::kLogUnits, ""}, {Option::kLogColumns, ""}};
-  } else {
-    const AccelUnits guessed = f.guess == UnitsGuess::kG      ? AccelUnits::kG
-                               : f.guess == UnitsGuess::kMps2 ? AccelUnits::kMps2
-                                                              : AccelUnits::kCounts;
-    advice.settings = {{Option::kLogUnits, std::string(ToString(guessed))}};
-  }
-  const std::string facts = fmt::format(
-      "{}: the readings have a median magnitude of {:.4g} {}, but gravity is {:.5g} m/s2 "
-      "({:.4g} {})",
-      f.source,
-      f.median_magnitude,
-      ToString(f.units),
-      gravity_mps2,
-      gravity_mps2 / per_unit,
-      ToString(f.units));
-  throw UnitsError(f,
-                   looks.empty() ? facts + "; check the units and the columns"
-                                 : facts + "; the readings look like " + looks,
-                   std::move(advice));
 }
 
 std::string CalibrateOptions::Validate() const {

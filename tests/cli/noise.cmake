@@ -28,6 +28,16 @@ mpcal_cli_test(noise_whole_flag EXIT 0 MATCH "--whole: detection not run"
 mpcal_cli_test(noise_moving_session_longest_still EXIT 0
   MATCH "the longest still part, .* of [0-9]+ found by detection \\(the sensor moved\\)"
   ARGS noise ${MPCAL_TEST_DATA}/detect_four_positions.csv --units g)
+# A file is read row by row and none of it held; when the sensor moved, it is
+# read again for detection (standard input is held: it cannot be read twice).
+mpcal_cli_test(noise_moving_session_read_again EXIT 0
+  MATCH "note: the sensor moved near t = [0-9.]+ s: finding its longest still part \\(reading the log again\\)"
+  ARGS noise ${MPCAL_TEST_DATA}/detect_four_positions.csv --units g)
+add_test(NAME cli.noise_moving_stdin
+  COMMAND sh -c "cat '${MPCAL_TEST_DATA}/detect_four_positions.csv' | '$<TARGET_FILE:mpcal_cli>' noise - --units g | grep -x '  note: the sensor moved near t = [0-9.]* s: finding its longest still part'")
+add_test(NAME cli.noise_stdin_same_as_file
+  COMMAND sh -c "'$<TARGET_FILE:mpcal_cli>' noise '${_still}' | tail -n +2 > noise_from_file.txt && cat '${_still}' | '$<TARGET_FILE:mpcal_cli>' noise - | tail -n +2 > noise_from_stdin.txt && grep -q 'detection found the sensor still throughout' noise_from_stdin.txt && cmp noise_from_file.txt noise_from_stdin.txt")
+set_tests_properties(cli.noise_moving_stdin cli.noise_stdin_same_as_file PROPERTIES LABELS cli)
 
 # Bad input and outputs refused before any work, nothing left behind.
 mpcal_cli_test(noise_missing_file EXIT 1 MATCH "mpcal: error: .*missing\\.csv" ABSENT n.json

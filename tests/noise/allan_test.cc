@@ -1,7 +1,9 @@
-// The Allan deviation itself: cumulative sums in place, the estimator on
+// The Allan deviation itself: the sums against the definition, the estimator on
 // white noise and on a random walk against their closed forms, the EDF and
 // the χ² quantiles behind the confidence intervals.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -41,37 +43,73 @@ TEST(OverlappingAllanEdf, WhiteNoiseIsAboutThreeHalvesOfTheClusters) {
   EXPECT_NEAR(OverlappingAllanEdf(1e6, 250000, NoiseTerm::kRandomWalk), 2.0, 0.1);
 }
 
-TEST(CumulativeSums3, InPlaceEqualsTheDirectSumOfTheSegment) {
-  std::vector<Eigen::Vector3d> v = WhiteNoise(1000, 1.0, 3);
-  const std::vector<Eigen::Vector3d> copy = v;
-  const CumulativeSums3 s =
-      CumulativeSums3::FromSamples(std::move(v), 100, 600, 2.0, 0.01);
-  ASSERT_EQ(s.size(), 501u);
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (int i = 100; i < 600; ++i) mean += copy[i];
-  mean /= 500.0;
-  EXPECT_NEAR((s.mean_si() - 2.0 * mean).norm(), 0.0, 1e-12);
-  Eigen::Vector3d run = Eigen::Vector3d::Zero();
-  for (int k = 0; k <= 500; ++k) {
-    EXPECT_NEAR((s.theta()[k] - 2.0 * run).norm(), 0.0, 1e-9) << k;
-    if (k < 500) run += copy[100 + k] - mean;
+// The sums of `v` (added in pieces of `piece` samples; 0: at once) and
+// their analysis, as AnalyseNoise runs them for one sensor.
+AllanSums SumsOf(const std::vector<Eigen::Vector3d>& v, std::size_t piece = 0) {
+  AllanSums s(AllanOptions{});
+  if (piece == 0) piece = v.size();
+  for (std::size_t i = 0; i < v.size(); i += piece) {
+    s.Add(v.data() + i, std::min(piece, v.size() - i));
   }
+  return s;
 }
 
-TEST(CumulativeSums3, WholeVectorDropsTheLastSampleRatherThanGrow) {
-  std::vector<Eigen::Vector3d> v = WhiteNoise(100, 1.0, 4);
-  const CumulativeSums3 s = CumulativeSums3::FromSamples(std::move(v), 0, 100, 1.0, 0.01);
-  EXPECT_EQ(s.size(), 100u);
-  EXPECT_NEAR(s.theta().back().norm(), 0.0, 1e-9);  // the mean is removed
+SensorNoise Analyse(const std::vector<Eigen::Vector3d>& v, double period_s) {
+  return AnalyseSensorNoise(SumsOf(v), 1.0, period_s, NoiseOptions{});
 }
 
-TEST(OverlappingAllan, WhiteNoiseFollowsNOverRootTauWithinItsInterval) {
+// σ² at m with starts every `stride`, straight from the definition, θ in
+// long double.
+long double DirectAvar(const std::vector<Eigen::Vector3d>& y,
+                       int axis,
+                       std::int64_t m,
+                       std::int64_t stride) {
+  std::vector<long double> theta(y.size() + 1, 0.0L);
+  for (std::size_t i = 0; i < y.size(); ++i) theta[i + 1] = theta[i] + y[i][axis];
+  const auto n = static_cast<std::int64_t>(y.size());
+  long double sum = 0.0L;
+  std::int64_t terms = 0;
+  for (std::int64_t k = 0; k + 2 * m <= n; k += stride, ++terms) {
+    const long double v = theta[k + 2 * m] - 2.0L * theta[k + m] + theta[k];
+    sum += v * v;
+  }
+  return sum / (2.0L * m * m * terms);
+}
+
+TEST(AllanSums, EqualsTheDefinitionWhateverTheSplit) {
+  // 20,000 samples: cluster sizes to 5,000, the far ones (stride 64 and
+  // more, from the kept sums) included.
+  const std::vector<Eigen::Vector3d> v = WhiteNoise(20000, 1.0, 3);
+  const auto whole = SumsOf(v).Curves(2.0, 0.01);
+  ASSERT_GT(whole[0].back().stride, AllanSums::kFarStride - 1);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const AllanPoint& p : whole[axis]) {
+      const double direct = static_cast<double>(4.0L * DirectAvar(v, axis, p.m, p.stride));
+      EXPECT_NEAR(p.avar / direct, 1.0, 1e-9) << axis << " m " << p.m;
+      EXPECT_DOUBLE_EQ(p.tau_s, 0.01 * static_cast<double>(p.m));
+    }
+  }
+  std::mt19937_64 rng(5);
+  for (const std::size_t piece : {std::size_t{1}, std::size_t{7}, std::size_t{9000}}) {
+    const auto split = SumsOf(v, piece).Curves(2.0, 0.01);
+    for (int axis = 0; axis < 3; ++axis) {
+      ASSERT_EQ(split[axis].size(), whole[axis].size());
+      for (std::size_t j = 0; j < whole[axis].size(); ++j) {
+        EXPECT_NEAR(split[axis][j].avar / whole[axis][j].avar, 1.0, 1e-12) << piece;
+        EXPECT_EQ(split[axis][j].terms, whole[axis][j].terms);
+      }
+    }
+  }
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& x : v) mean += x;
+  EXPECT_NEAR((SumsOf(v, 7).Mean() - mean / 20000.0).norm(), 0.0, 1e-12);
+}
+
+TEST(AllanSums, WhiteNoiseFollowsNOverRootTauWithinItsInterval) {
   const double rate_hz = 100.0, n_density = 0.02;  // u/√Hz
   const std::size_t n = 400000;
   std::vector<Eigen::Vector3d> v = WhiteNoise(n, n_density * std::sqrt(rate_hz), 11);
-  const CumulativeSums3 s =
-      CumulativeSums3::FromSamples(std::move(v), 0, n, 1.0, 1 / rate_hz);
-  const SensorNoise r = AnalyseSensorNoise(s, NoiseOptions{});
+  const SensorNoise r = Analyse(v, 1 / rate_hz);
   for (int axis = 0; axis < 3; ++axis) {
     const AxisNoise& a = r.axes[axis];
     ASSERT_GT(a.curve.size(), 40u);
@@ -94,7 +132,7 @@ TEST(OverlappingAllan, WhiteNoiseFollowsNOverRootTauWithinItsInterval) {
   }
 }
 
-TEST(OverlappingAllan, RandomWalkFollowsKRootTauOverThree) {
+TEST(AllanSums, RandomWalkFollowsKRootTauOverThree) {
   const double rate_hz = 50.0, k_density = 1e-3;  // u/s/√Hz
   const std::size_t n = 200000;
   int covered = 0, trials = 0;
@@ -107,9 +145,7 @@ TEST(OverlappingAllan, RandomWalkFollowsKRootTauOverThree) {
       x = walk;
       walk += Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
     }
-    const CumulativeSums3 s =
-        CumulativeSums3::FromSamples(std::move(v), 0, n, 1.0, 1 / rate_hz);
-    const SensorNoise r = AnalyseSensorNoise(s, NoiseOptions{});
+    const SensorNoise r = Analyse(v, 1 / rate_hz);
     for (const AxisNoise& a : r.axes) {
       // The curve: the closed form of a sampled random walk (the continuous
       // K²τ/3 plus K²/(6 f_s² τ) from the sampling) within the intervals.
@@ -135,10 +171,10 @@ TEST(OverlappingAllan, RandomWalkFollowsKRootTauOverThree) {
   EXPECT_GE(covered, 24) << covered << " of " << trials;
 }
 
-TEST(OverlappingAllan, RefusesTooFewSamples) {
-  std::vector<Eigen::Vector3d> v = WhiteNoise(6, 1.0, 1);
-  const CumulativeSums3 s = CumulativeSums3::FromSamples(std::move(v), 0, 6, 1.0, 0.01);
-  EXPECT_THROW(OverlappingAllan(s, AllanOptions{}), Error);
+TEST(AllanSums, RefusesTooFewSamples) {
+  const std::vector<Eigen::Vector3d> v = WhiteNoise(7, 1.0, 1);
+  EXPECT_THROW(SumsOf(v).Curves(1.0, 0.01), Error);
+  EXPECT_EQ(SumsOf(WhiteNoise(8, 1.0, 1)).Curves(1.0, 0.01)[0].size(), 2u);  // m = 1, 2
 }
 
 TEST(AllanOptions, DefaultsAreValidAndBadFieldsNamed) {

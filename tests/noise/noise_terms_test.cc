@@ -108,10 +108,9 @@ TEST(NoiseTerms, FlickerApproximationIsFlatAtPoint664B) {
   double t;
   Eigen::Vector3d a, g;
   while (gen.Next(&t, &a, &g)) accel.push_back(a);
-  const std::size_t n = accel.size();
-  const CumulativeSums3 s =
-      CumulativeSums3::FromSamples(std::move(accel), 0, n, 1.0, 0.1);
-  const SensorNoise r = AnalyseSensorNoise(s, NoiseOptions{});
+  AllanSums sums(AllanOptions{});
+  sums.Add(accel.data(), accel.size());
+  const SensorNoise r = AnalyseSensorNoise(sums, 1.0, 0.1, NoiseOptions{});
   for (const AxisNoise& ax : r.axes) {
     int inside = 0, count = 0;
     for (const AllanPoint& p : ax.curve) {

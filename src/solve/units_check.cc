@@ -1,0 +1,130 @@
+// Whether a log's readings fit their declared units: the evidence, gathered
+// as the rows arrive, and the judgement (CheckUnits).
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "mpcal/calibrate.h"
+#include "mpcal/error.h"
+#include "mpcal/gravity.h"
+#include "mpcal/plausible.h"
+
+namespace mpcal {
+namespace {
+
+// The magnitude of a static mean in m/s² may differ from g by the sensor's
+// own errors (consumer parts: up to ~0.5 g of bias and 10 % of scale); far
+// outside this band the units are wrong, not the sensor.
+constexpr double kPlausibleRestRatioLow = 0.5;
+constexpr double kPlausibleRestRatioHigh = 1.6;
+
+// The largest full scale of MEMS gyroscopes (4000 deg/s, about 70 rad/s):
+// a log in rad/s that reaches beyond it holds deg/s (or counts).
+constexpr double kMaxGyroRadps = 4000.0 * std::numbers::pi / 180.0;
+
+void CheckGyroUnits(const UnitsEvidence& e) {
+  if (e.gyro_units != GyroUnits::kRadps || !e.has_gyro) return;
+  const double largest = e.largest_gyro;
+  if (!(largest > kMaxGyroRadps)) return;
+  const bool dps = largest * std::numbers::pi / 180.0 <= kMaxGyroRadps;
+  throw Error(
+      ErrorKind::kUnits,
+      fmt::format("{}: the gyroscope reaches {:.4g} rad/s, beyond the {:.0f} rad/s "
+                  "(4000 deg/s) full scale of MEMS gyroscopes; the readings look "
+                  "like {}",
+                  e.source,
+                  largest,
+                  kMaxGyroRadps,
+                  dps ? "deg/s" : "raw ADC counts"),
+      Advice{{{Option::kLogGyroUnits, dps ? "dps" : "counts"}}, Stage::kNone, ""});
+}
+
+}  // namespace
+
+UnitsEvidence UnitsEvidence::Of(const Recording& recording) {
+  UnitsEvidence e;
+  e.Add(recording, 0, recording.size());
+  return e;
+}
+
+void UnitsEvidence::Add(const Recording& part, std::size_t begin, std::size_t end) {
+  if (end <= begin) return;
+  if (rows == 0) {
+    source = part.source;
+    units = part.units;
+    gyro_units = part.gyro_units;
+    has_gyro = part.gyro_radps.size() == part.size();
+  }
+  for (std::size_t i = begin; i < end; ++i) magnitudes.Add(part.accel[i].norm());
+  if (has_gyro) {
+    for (std::size_t i = begin; i < end; ++i) {
+      largest_gyro = std::max(largest_gyro, part.gyro_radps[i].cwiseAbs().maxCoeff());
+    }
+  }
+  rows += end - begin;
+}
+
+
+void CheckUnits(const UnitsEvidence& e, double gravity_mps2) {
+  CheckGyroUnits(e);
+  if (!IsPlausibleGravity(gravity_mps2)) {
+    throw Error(ErrorKind::kOption,
+                fmt::format("gravity {} m/s2 is outside the plausible {}-{} m/s2",
+                            gravity_mps2,
+                            kMinGravityMps2,
+                            kMaxGravityMps2),
+                Advice{{{Option::kGravity, ""}}, Stage::kNone, ""});
+  }
+  if (e.rows == 0 || e.units == AccelUnits::kCounts) return;
+  UnitsError::Finding f;
+  f.source = e.source;
+  f.units = e.units;
+  f.gravity_mps2 = gravity_mps2;
+  const double per_unit = *FixedMps2PerUnit(f.units);
+  const double ratio = e.magnitudes.Quantile(0.5) * per_unit / gravity_mps2;
+  if (ratio >= kPlausibleRestRatioLow && ratio <= kPlausibleRestRatioHigh) return;
+  f.median_magnitude = ratio * gravity_mps2 / per_unit;
+  Advice advice;
+  std::string looks;
+  if (f.units == AccelUnits::kMps2 && std::abs(f.median_magnitude - 1.0) < 0.5) {
+    f.guess = UnitsGuess::kG;
+    looks = "g";
+  } else if (f.units == AccelUnits::kG &&
+             std::abs(f.median_magnitude / kStandardGravityMps2 - 1.0) < 0.5) {
+    f.guess = UnitsGuess::kMps2;
+    looks = "m/s2";
+  } else if (ratio * gravity_mps2 / kStandardGravityMps2 > 20.0) {
+    f.guess = UnitsGuess::kCounts;
+    looks = "raw ADC counts";
+  }
+  if (f.guess == UnitsGuess::kUnknown) {
+    advice.settings = {{Option::kLogUnits, ""}, {Option::kLogColumns, ""}};
+  } else {
+    const AccelUnits guessed = f.guess == UnitsGuess::kG      ? AccelUnits::kG
+                               : f.guess == UnitsGuess::kMps2 ? AccelUnits::kMps2
+                                                              : AccelUnits::kCounts;
+    advice.settings = {{Option::kLogUnits, std::string(ToString(guessed))}};
+  }
+  const std::string facts = fmt::format(
+      "{}: the readings have a median magnitude of {:.4g} {}, but gravity is {:.5g} m/s2 "
+      "({:.4g} {})",
+      f.source,
+      f.median_magnitude,
+      ToString(f.units),
+      gravity_mps2,
+      gravity_mps2 / per_unit,
+      ToString(f.units));
+  throw UnitsError(f,
+                   looks.empty() ? facts + "; check the units and the columns"
+                                 : facts + "; the readings look like " + looks,
+                   std::move(advice));
+}
+
+void CheckUnits(const Recording& recording, double gravity_mps2) {
+  CheckUnits(UnitsEvidence::Of(recording), gravity_mps2);
+}
+
+}  // namespace mpcal
