@@ -221,11 +221,10 @@ std::optional<Recording> ReadInto(NoiseFlags& f,
   f.log.progress = progress.Callback();
   std::optional<Recording> held;
   if (CanReadTwice(f.input)) {
-    const LogStreamSummary s =
-        ReadLogRows(f.input, f.log, [&](const Recording& rows) {
-          evidence->Add(rows, 0, rows.size());
-          stream->Add(rows);
-        });
+    const LogStreamSummary s = ReadLogRows(f.input, f.log, [&](const Recording& rows) {
+      evidence->Add(rows, 0, rows.size());
+      stream->Add(rows);
+    });
     a->rows = s.rows;
     a->span_s = s.last_time_s - s.first_time_s;
     a->warnings = s.warnings;

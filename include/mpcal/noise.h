@@ -135,7 +135,7 @@ class AllanSums {
   /// defaults; AnalyseSensorNoise sets them from the fitted terms).
   /// \throws mpcal::Error when fewer than 8 samples.
   std::array<std::vector<AllanPoint>, 3> Curves(double si_per_unit,
-                                                       double sample_period_s) const;
+                                                double sample_period_s) const;
 
  private:
   struct Near {
@@ -151,10 +151,10 @@ class AllanSums {
   Eigen::Vector3d first_ = Eigen::Vector3d::Zero();
   std::array<long double, 3> run_{};  // θ of the last sample added
   std::vector<Near> near_;
-  std::int64_t history_ = 0;     // sums kept before the new ones: 2 × largest near m
-  std::vector<double> recent_;   // θ_{base_} ... θ_{samples_}, 3 doubles each
-  std::int64_t base_ = 0;        // index of recent_'s first sum
-  std::vector<double> far_;      // θ_0, θ_64, θ_128, ...
+  std::int64_t history_ = 0;    // sums kept before the new ones: 2 × largest near m
+  std::vector<double> recent_;  // θ_{base_} ... θ_{samples_}, 3 doubles each
+  std::int64_t base_ = 0;       // index of recent_'s first sum
+  std::vector<double> far_;     // θ_0, θ_64, θ_128, ...
 };
 
 /// EDF of the overlapping Allan variance at m for N phase points and the

@@ -39,8 +39,8 @@ class SystematicSample {
   double Quantile(double q) const {
     if (kept_.empty()) return 0.0;
     std::vector<double> v = kept_;
-    const auto k = static_cast<std::size_t>(
-        std::clamp(q, 0.0, 1.0) * static_cast<double>(v.size() - 1));
+    const auto k = static_cast<std::size_t>(std::clamp(q, 0.0, 1.0) *
+                                            static_cast<double>(v.size() - 1));
     std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
     return v[k];
   }

@@ -201,8 +201,7 @@ StillVerdict StillnessMonitor::State::VerdictOfSized() const {
   v.gap_at_s = event_at_s;
   if (windows > 0) {
     const double step_floor = std::isfinite(step) ? 0.5 * step : 0.0;
-    v.quiet_level =
-        std::max(kept.Quantile(options.quiet_quantile), step_floor);
+    v.quiet_level = std::max(kept.Quantile(options.quiet_quantile), step_floor);
     v.threshold = options.threshold_factor * v.quiet_level;
     const double cap = options.max_still_g * one_g;
     if (cap > 0.0 && cap < v.threshold) {

@@ -167,7 +167,8 @@ void AllanSums::SumNear() {
               near.m,
               near.stride,
               near.total.data());
-    near.next_start += (k1 - near.next_start + near.stride - 1) / near.stride * near.stride;
+    near.next_start +=
+        (k1 - near.next_start + near.stride - 1) / near.stride * near.stride;
   }
   const std::int64_t keep_from = std::max<std::int64_t>(base_, last - history_);
   recent_.erase(recent_.begin(), recent_.begin() + 3 * (keep_from - base_));

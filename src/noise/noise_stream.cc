@@ -25,7 +25,8 @@ constexpr std::size_t kParallelRows = std::size_t{1} << 16;
 
 // The median (the upper of two middles) of a copy of `v`; needs one value.
 double Median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  std::nth_element(
+      v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
   return v[v.size() / 2];
 }
 
@@ -111,10 +112,11 @@ std::optional<StillVerdict> NoiseStream::Stillness() const {
 NoiseResult NoiseStream::Finish(double accel_mps2_per_unit,
                                 const NoiseSegment& segment) const {
   if (rows_ < 9) {
-    throw Error(ErrorKind::kInput,
-                fmt::format("{}: {} samples are too few for an Allan deviation (at least 9)",
-                            source_,
-                            rows_));
+    throw Error(
+        ErrorKind::kInput,
+        fmt::format("{}: {} samples are too few for an Allan deviation (at least 9)",
+                    source_,
+                    rows_));
   }
   NoiseResult r;
   r.segment = segment;
@@ -132,8 +134,10 @@ NoiseResult NoiseStream::Finish(double accel_mps2_per_unit,
   }
   r.samples = rows_;
   r.record_s = static_cast<double>(r.samples) * r.sample_period_s;
-  r.accel_mps2 = AnalyseSensorNoise(accel_, accel_mps2_per_unit, r.sample_period_s, options_);
-  if (has_gyro_) r.gyro_radps = AnalyseSensorNoise(gyro_, 1.0, r.sample_period_s, options_);
+  r.accel_mps2 =
+      AnalyseSensorNoise(accel_, accel_mps2_per_unit, r.sample_period_s, options_);
+  if (has_gyro_)
+    r.gyro_radps = AnalyseSensorNoise(gyro_, 1.0, r.sample_period_s, options_);
   return r;
 }
 

@@ -67,7 +67,6 @@ void UnitsEvidence::Add(const Recording& part, std::size_t begin, std::size_t en
   rows += end - begin;
 }
 
-
 void CheckUnits(const UnitsEvidence& e, double gravity_mps2) {
   CheckGyroUnits(e);
   if (!IsPlausibleGravity(gravity_mps2)) {

@@ -84,7 +84,8 @@ TEST(AllanSums, EqualsTheDefinitionWhateverTheSplit) {
   ASSERT_GT(whole[0].back().stride, AllanSums::kFarStride - 1);
   for (int axis = 0; axis < 3; ++axis) {
     for (const AllanPoint& p : whole[axis]) {
-      const double direct = static_cast<double>(4.0L * DirectAvar(v, axis, p.m, p.stride));
+      const double direct =
+          static_cast<double>(4.0L * DirectAvar(v, axis, p.m, p.stride));
       EXPECT_NEAR(p.avar / direct, 1.0, 1e-9) << axis << " m " << p.m;
       EXPECT_DOUBLE_EQ(p.tau_s, 0.01 * static_cast<double>(p.m));
     }

@@ -68,7 +68,8 @@ TEST(NoiseStream, PiecesGiveWhatTheHeldRecordGives) {
   const Recording rec = StillRecord(20.0, 100.0, 3);
   const NoiseSegment all{NoiseSegmentKind::kWholeRecord, 0, rec.size(), 1};
   const NoiseResult held = AnalyseNoise(rec, all, 1.0, NoiseOptions{});
-  for (const std::size_t largest : {std::size_t{1}, std::size_t{977}, std::size_t{50000}}) {
+  for (const std::size_t largest :
+       {std::size_t{1}, std::size_t{977}, std::size_t{50000}}) {
     const DetectOptions detect;
     NoiseStream s(NoiseOptions{}, &detect, AccelUnits::kMps2);
     const NoiseResult r = Feed(s, rec, largest).Finish(1.0, all);
@@ -95,7 +96,8 @@ TEST(NoiseStream, UnitsScaleTheAccelerometerOnly) {
   };
   EXPECT_NEAR(n(scaled.accel_mps2) / n(si.accel_mps2), 2.0, 1e-9);
   EXPECT_NEAR(n(*scaled.gyro_radps) / n(*si.gyro_radps), 1.0, 1e-12);
-  EXPECT_NEAR((scaled.accel_mps2.mean_si - 2.0 * si.accel_mps2.mean_si).norm(), 0.0, 1e-9);
+  EXPECT_NEAR(
+      (scaled.accel_mps2.mean_si - 2.0 * si.accel_mps2.mean_si).norm(), 0.0, 1e-9);
 }
 
 TEST(NoiseStream, GapsAreStepsOverOneAndAHalfTheFirstSteps) {
