@@ -115,8 +115,9 @@ class SessionError : public Error {
 };
 
 /// What CheckUnits judges a log's units by, gathered as its rows arrive
-/// (Add) or from a whole recording (Of): the accelerometer's magnitudes (a
-/// SystematicSample, for their median) and the gyroscope's largest reading.
+/// (Add) or from a whole recording (Of): the magnitudes of every 16th
+/// accelerometer reading (a SystematicSample, for their median) and the
+/// gyroscope's largest reading.
 struct UnitsEvidence {
   std::string source;
   AccelUnits units = AccelUnits::kMps2;

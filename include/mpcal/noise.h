@@ -56,6 +56,7 @@
 
 #include "mpcal/calibration.h"
 #include "mpcal/detect.h"
+#include "mpcal/gap_counter.h"
 #include "mpcal/recording.h"
 #include "mpcal/systematic_sample.h"
 
@@ -335,9 +336,7 @@ class NoiseStream {
   std::unique_ptr<StillnessMonitor> stillness_;
   SystematicSample steps_;
   double last_time_s_ = 0.0;
-  std::vector<double> first_steps_;  // until the gap reference is known
-  double gap_reference_s_ = 0.0;     // 0 until then
-  std::size_t gaps_ = 0;
+  GapCounter gaps_;
 };
 
 /// Analyses recording[segment] (a NoiseStream over it, not judging

@@ -89,51 +89,19 @@ std::string CutOffLine::Warning(const std::string& source) const {
       problem_);
 }
 
-void GapCounter::Add(std::span<const double> times_s) {
-  std::size_t i = 0;
-  while (!settled_ && i < times_s.size()) {
-    early_.push_back(times_s[i++]);
-    if (early_.size() > kTypicalSteps) Settle();
-  }
-  if (i == times_s.size()) return;
-  double before = last_;
-  for (; i < times_s.size(); ++i) {
-    Step(before, times_s[i]);
-    before = times_s[i];
-  }
-  last_ = before;
-}
+GapCounter ReaderGapCounter() { return GapCounter(10000, 5.0); }
 
-// The typical step from the times held, then their steps counted.
-void GapCounter::Settle() {
-  settled_ = true;
-  if (early_.size() < 3) return;  // too few steps to call one typical
-  std::vector<double> steps;
-  steps.reserve(early_.size() - 1);
-  for (std::size_t i = 0; i + 1 < early_.size(); ++i) {
-    steps.push_back(early_[i + 1] - early_[i]);
-  }
-  const auto middle = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
-  std::nth_element(steps.begin(), middle, steps.end());
-  typical_ = *middle;
-  limit_ = 5.0 * typical_;
-  for (std::size_t i = 0; i + 1 < early_.size(); ++i) Step(early_[i], early_[i + 1]);
-  last_ = early_.back();
-  std::vector<double>().swap(early_);
-}
-
-std::string GapCounter::Warning(const std::string& source) {
-  if (!settled_) Settle();
-  if (gaps_ == 0) return "";
+std::string GapWarning(const GapCounter& gaps, const std::string& source) {
+  if (gaps.gaps() == 0) return "";
   return fmt::format(
       "{}: {} gap{} in time longer than 5 sample periods ({:.4g} s); the largest is "
       "{:.4g} s after t = {:.9g} s",
       source,
-      gaps_,
-      gaps_ == 1 ? "" : "s",
-      typical_,
-      largest_,
-      largest_at_);
+      gaps.gaps(),
+      gaps.gaps() == 1 ? "" : "s",
+      gaps.typical_s(),
+      gaps.largest_s(),
+      gaps.largest_at_s());
 }
 
 RowSink::RowSink(Recording* rec,
@@ -306,7 +274,8 @@ void RowSink::Finish(bool has_header) {
                     duplicates_ == 1 ? "" : "s",
                     first_duplicate_line_));
   }
-  std::string gaps = gaps_.Warning(rec_->source);
+  gaps_.Finish();
+  std::string gaps = GapWarning(gaps_, rec_->source);
   if (!gaps.empty()) rec_->warnings.push_back(std::move(gaps));
 }
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "chunk_source.h"
+#include "mpcal/gap_counter.h"
 #include "mpcal/recording.h"
 
 namespace mpcal::logio {
@@ -51,39 +52,12 @@ class CutOffLine {
   std::string problem_;
 };
 
-/// Gaps in time: steps longer than 5 typical ones. The typical step is the
-/// median of the first kTypicalSteps steps (held until there are that many,
-/// or until the end), so that the rule needs neither the whole record nor
-/// its length: reading a log whole or in pieces gives the same warning.
-class GapCounter {
- public:
-  static constexpr std::size_t kTypicalSteps = 10000;
-  /// The next times (strictly increasing, after those added before).
-  void Add(std::span<const double> times_s);
-  /// The warning, "" when there is no gap, once every time was added.
-  std::string Warning(const std::string& source);
-
- private:
-  void Settle();
-  void Step(double before, double after) {
-    const double step = after - before;
-    if (step <= limit_) return;
-    ++gaps_;
-    if (step > largest_) {
-      largest_ = step;
-      largest_at_ = before;
-    }
-  }
-
-  std::vector<double> early_;  // the first times, until the typical step is known
-  bool settled_ = false;
-  double last_ = 0.0;  // the last time added, once settled
-  double typical_ = 0.0;
-  double limit_ = 0.0;
-  std::size_t gaps_ = 0;
-  double largest_ = 0.0;
-  double largest_at_ = 0.0;
-};
+/// The reader's rule for gaps in time: steps longer than 5 typical ones, the
+/// typical step the median of the first 10,000 (GapCounter: reading a log
+/// whole or in pieces gives the same warning).
+GapCounter ReaderGapCounter();
+/// The warning for the gaps counted (after GapCounter::Finish), "" for none.
+std::string GapWarning(const GapCounter& gaps, const std::string& source);
 
 /// Appends the rows of chunks, in file order, to a Recording: all of them
 /// (holding), or each chunk's then handed over (streaming, see StreamTo).
@@ -140,7 +114,7 @@ class RowSink {
   double last_time_s_ = 0.0;  // of the last row kept
   bool reserved_ = false;
   CutOffLine cut_off_;
-  GapCounter gaps_;
+  GapCounter gaps_ = ReaderGapCounter();
   std::function<void(const Recording&)> consume_;  // empty: holding
 };
 

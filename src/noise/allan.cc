@@ -2,12 +2,10 @@
 // degrees of freedom and χ² confidence intervals (see mpcal/noise.h for the
 // method and the references; the sums themselves are in allan_sums.cc).
 #include <algorithm>
-#include <array>
 #include <bit>
 #include <cassert>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <string>
 #include <vector>
 

@@ -1,9 +1,7 @@
 // A recording's noise: which samples, and each sensor's curves and terms.
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <fmt/format.h>

@@ -1,8 +1,8 @@
 // The noise of a record as its rows arrive (NoiseStream): both sensors'
 // Allan sums, the sample period and the gaps, and the stillness judgement.
-#include <algorithm>
 #include <exception>
 #include <memory>
+#include <span>
 #include <string>
 #include <thread>
 #include <vector>
@@ -23,19 +23,15 @@ constexpr double kGapFactor = 1.5;
 // starting the thread costs more than it saves).
 constexpr std::size_t kParallelRows = std::size_t{1} << 16;
 
-// The median (the upper of two middles) of a copy of `v`; needs one value.
-double Median(std::vector<double> v) {
-  std::nth_element(
-      v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
-
 }  // namespace
 
 NoiseStream::NoiseStream(const NoiseOptions& options,
                          const DetectOptions* stillness,
                          AccelUnits accel_units)
-    : options_(options), accel_(options.allan), gyro_(options.allan) {
+    : options_(options),
+      accel_(options.allan),
+      gyro_(options.allan),
+      gaps_(kGapReferenceSteps, kGapFactor) {
   if (const std::string bad = options.Validate(); !bad.empty()) {
     throw Error(ErrorKind::kOption, "noise options: " + bad);
   }
@@ -49,26 +45,10 @@ NoiseStream::~NoiseStream() = default;
 void NoiseStream::AddSteps(const std::vector<double>& t,
                            std::size_t begin,
                            std::size_t end) {
-  const auto count = [&](double step) {
-    if (step > kGapFactor * gap_reference_s_) ++gaps_;
-  };
+  gaps_.Add(std::span<const double>(t.data() + begin, end - begin));
   for (std::size_t i = begin; i < end; ++i) {
-    if (rows_ + (i - begin) == 0) {
-      last_time_s_ = t[i];
-      continue;
-    }
-    const double step = t[i] - last_time_s_;
+    if (rows_ + (i - begin) > 0) steps_.Add(t[i] - last_time_s_);
     last_time_s_ = t[i];
-    steps_.Add(step);
-    if (gap_reference_s_ > 0.0) {
-      count(step);
-      continue;
-    }
-    first_steps_.push_back(step);
-    if (first_steps_.size() < kGapReferenceSteps) continue;
-    gap_reference_s_ = Median(first_steps_);
-    for (const double s : first_steps_) count(s);
-    std::vector<double>().swap(first_steps_);
   }
 }
 
@@ -124,14 +104,9 @@ NoiseResult NoiseStream::Finish(double accel_mps2_per_unit,
   if (!(r.sample_period_s > 0.0))
     throw Error(ErrorKind::kTime, source_ + ": no sample spacing");
   r.rate_hz = 1.0 / r.sample_period_s;
-  r.gaps = gaps_;
-  if (gap_reference_s_ <= 0.0) {  // fewer steps than the reference takes
-    const double reference = Median(first_steps_);
-    r.gaps = static_cast<std::size_t>(
-        std::count_if(first_steps_.begin(), first_steps_.end(), [&](double s) {
-          return s > kGapFactor * reference;
-        }));
-  }
+  GapCounter gaps = gaps_;  // a copy: Finish counts the steps still held
+  gaps.Finish();
+  r.gaps = gaps.gaps();
   r.samples = rows_;
   r.record_s = static_cast<double>(r.samples) * r.sample_period_s;
   r.accel_mps2 =

@@ -21,6 +21,9 @@ namespace {
 constexpr double kPlausibleRestRatioLow = 0.5;
 constexpr double kPlausibleRestRatioHigh = 1.6;
 
+// Rows between the magnitudes whose median is judged.
+constexpr std::size_t kMagnitudeStride = 16;
+
 // The largest full scale of MEMS gyroscopes (4000 deg/s, about 70 rad/s):
 // a log in rad/s that reaches beyond it holds deg/s (or counts).
 constexpr double kMaxGyroRadps = 4000.0 * std::numbers::pi / 180.0;
@@ -58,7 +61,11 @@ void UnitsEvidence::Add(const Recording& part, std::size_t begin, std::size_t en
     gyro_units = part.gyro_units;
     has_gyro = part.gyro_radps.size() == part.size();
   }
-  for (std::size_t i = begin; i < end; ++i) magnitudes.Add(part.accel[i].norm());
+  // Every 16th row by its index in the log: a hand-held session is mostly
+  // at rest, and during turns |a| stays near g as well.
+  for (std::size_t i = begin; i < end; ++i) {
+    if ((rows + i - begin) % kMagnitudeStride == 0) magnitudes.Add(part.accel[i].norm());
+  }
   if (has_gyro) {
     for (std::size_t i = begin; i < end; ++i) {
       largest_gyro = std::max(largest_gyro, part.gyro_radps[i].cwiseAbs().maxCoeff());

@@ -169,20 +169,26 @@ std::vector<double> TimesWithGaps() {
   return t;
 }
 
+// The reader's warning once every time was added.
+std::string Warning(GapCounter& gaps) {
+  gaps.Finish();
+  return GapWarning(gaps, "log");
+}
+
 TEST(GapCounter, SameWarningWhateverThePieces) {
   const std::vector<double> t = TimesWithGaps();
-  GapCounter whole;
+  GapCounter whole = ReaderGapCounter();
   whole.Add(t);
-  const std::string expected = whole.Warning("log");
+  const std::string expected = Warning(whole);
   EXPECT_THAT(expected,
               HasSubstr("log: 3 gaps in time longer than 5 sample periods (0.01 s); "
                         "the largest is 0.31 s after t = 100.19 s"));
   for (const std::size_t piece : {1u, 7u, 9999u, 10000u, 10001u, 12345u}) {
-    GapCounter counter;
+    GapCounter counter = ReaderGapCounter();
     for (std::size_t i = 0; i < t.size(); i += piece) {
       counter.Add(std::span<const double>(t).subspan(i, std::min(piece, t.size() - i)));
     }
-    EXPECT_EQ(counter.Warning("log"), expected) << "pieces of " << piece;
+    EXPECT_EQ(Warning(counter), expected) << "pieces of " << piece;
   }
 }
 
@@ -192,20 +198,20 @@ TEST(GapCounter, TypicalStepFromTheFirstStepsOnly) {
   std::vector<double> t;
   for (int i = 0; i <= 10000; ++i) t.push_back(0.01 * i);
   for (int i = 1; i <= 20000; ++i) t.push_back(100.0 + 0.1 * i);
-  GapCounter counter;
+  GapCounter counter = ReaderGapCounter();
   counter.Add(t);
-  EXPECT_THAT(counter.Warning("log"),
+  EXPECT_THAT(Warning(counter),
               HasSubstr("20000 gaps in time longer than 5 sample "
                         "periods (0.01 s)"));
 }
 
 TEST(GapCounter, NothingToSayForFewTimesOrNoGap) {
-  GapCounter two;
+  GapCounter two = ReaderGapCounter();
   two.Add(std::vector<double>{0.0, 5.0});
-  EXPECT_EQ(two.Warning("log"), "");
-  GapCounter regular;
+  EXPECT_EQ(Warning(two), "");
+  GapCounter regular = ReaderGapCounter();
   regular.Add(std::vector<double>{0.0, 0.01, 0.02, 0.03, 0.04});
-  EXPECT_EQ(regular.Warning("log"), "");
+  EXPECT_EQ(Warning(regular), "");
 }
 
 TEST(ProgressReporter, AtMostAHundredReportsInOrderEndingAtOne) {

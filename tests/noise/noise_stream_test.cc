@@ -12,6 +12,7 @@
 #include "mpcal/noise.h"
 #include "mpcal/simulate.h"
 #include "mpcal/simulate_noise.h"
+#include "simulated_still.h"
 
 namespace mpcal {
 namespace {
@@ -21,17 +22,7 @@ Recording StillRecord(double minutes, double rate_hz, std::uint64_t seed) {
   o.duration_s = minutes * 60.0;
   o.rate_hz = rate_hz;
   o.seed = seed;
-  NoiseGenerator gen(o);
-  Recording rec;
-  rec.source = "<simulated>";
-  double t = 0.0;
-  Eigen::Vector3d a, g;
-  while (gen.Next(&t, &a, &g)) {
-    rec.time_s.push_back(t);
-    rec.accel.push_back(a);
-    rec.gyro_radps.push_back(g);
-  }
-  return rec;
+  return SimulatedStill(o);
 }
 
 // The stream over `rec` in random pieces of up to `largest` rows.

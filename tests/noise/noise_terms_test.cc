@@ -8,6 +8,7 @@
 
 #include "mpcal/noise.h"
 #include "mpcal/simulate_noise.h"
+#include "simulated_still.h"
 
 namespace mpcal {
 namespace {
@@ -25,16 +26,7 @@ Simulated Simulate(const std::string& preset,
   o.duration_s = hours * 3600.0;
   o.rate_hz = rate_hz;
   o.seed = seed;
-  NoiseGenerator gen(o);
-  Recording rec;
-  rec.source = "<simulated>";
-  double t = 0.0;
-  Eigen::Vector3d a, g;
-  while (gen.Next(&t, &a, &g)) {
-    rec.time_s.push_back(t);
-    rec.accel.push_back(a);
-    rec.gyro_radps.push_back(g);
-  }
+  Recording rec = SimulatedStill(o);
   NoiseSegment all;
   all.end = rec.size();
   return {AnalyseNoise(std::move(rec), all, 1.0, NoiseOptions{}), o};
