@@ -38,6 +38,13 @@ const CLI::Validator OutputPath(
                  : "";
     },
     "PATH");
+const CLI::Validator InputPath(
+    [](const std::string& text) -> std::string {
+      return text.empty()
+                 ? "the file name is empty; give a path, or '-' for standard input"
+                 : "";
+    },
+    "PATH");
 
 void AddLogOptions(CLI::App& app, LogOptions& options) {
   const std::vector<std::pair<std::string, AccelUnits>> units{
