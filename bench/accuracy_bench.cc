@@ -1,12 +1,12 @@
-// Accuracy Monte Carlo (issue #2): per parameter, the RMS error over
+// Accuracy Monte Carlo: per parameter, the RMS error over
 // simulated sessions divided by the Cramér-Rao bound of each session. An
 // efficient estimator gives 1; the bar is 1.5 for the RMS over all
 // parameters, every reported 1σ within 0.5-2× its bound, and the RMS of
 // z = error/reported 1σ within 0.8-1.25. Then the same with a bias drifting
-// linearly over each session (issue #16): the bound is that of the model
+// linearly over each session: the bound is that of the model
 // with the drift estimated, and the drift must be chosen.
 //
-// The split-half check (issue #16) widens every 1σ of a session whose two
+// The split-half check widens every 1σ of a session whose two
 // halves disagree beyond chance: by design in 1 % of honest sessions, each
 // by at least 1.55 (METHOD.md §9), and in every session the model does not
 // fit (a drift the test missed). Those sessions are counted apart: the

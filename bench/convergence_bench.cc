@@ -1,4 +1,4 @@
-// Convergence Monte Carlo (issue #5): from the automatic six-position
+// Convergence Monte Carlo: from the automatic six-position
 // initialisation, every simulated session with consumer-grade errors (bias
 // 0.5 g, scale error 10 %, non-orthogonality 0.05 rad) converges to the
 // truth: within 6 bound-σ on every parameter.

@@ -1,4 +1,4 @@
-// Kernels of `mpcal calibrate` after reading (issue 4): static detection over
+// Kernels of `mpcal calibrate` after reading: static detection over
 // a long 1 kHz session, and the whole calibration of its positions (detection
 // plus the solver, which works on 27 position means whatever the log's
 // length). Compare with BM_ReadLog (parse_bench) per row: detection must stay

@@ -1,4 +1,4 @@
-// False-alarm rate of `mpcal repeat` (issue #6): sets of three power-ups of
+// False-alarm rate of `mpcal repeat`: sets of three power-ups of
 // one device whose bias does NOT move between them (turn-on spread zero),
 // each calibrated end to end. A parameter is flagged "changed" by a test at
 // 1 % significance, so if every calibration's 1σ is honest about 1 % of the

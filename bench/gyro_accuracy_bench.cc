@@ -1,4 +1,4 @@
-// Gyroscope Monte Carlo (issue 17): sessions of a consumer-grade IMU with
+// Gyroscope Monte Carlo: sessions of a consumer-grade IMU with
 // random errors up to 6 % of scale, 0.03 rad of misalignment and 3 deg/s of
 // bias, calibrated by the whole pipeline (detection, accelerometer, then the
 // gyroscope from the turns). Per entry of M: the RMS over sessions of

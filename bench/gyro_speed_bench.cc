@@ -1,4 +1,4 @@
-// The gyroscope's stage of `mpcal calibrate` alone (issue 17's speed bar is
+// The gyroscope's stage of `mpcal calibrate` alone (its speed bar is
 // on the whole process, bench/gyro_speed_bench.sh): on imu_tk's Xsens
 // recording read once, with its positions and accelerometer calibration,
 // CalibrateGyroscope from raw counts (the scale found from the data), and

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Whole-process speed of `mpcal calibrate` of accelerometer + gyroscope on
-# imu_tk's Xsens recording (two files of 51 175 rows merged by row; issue 17
+# imu_tk's Xsens recording (two files of 51 175 rows merged by row;
 # target: under 0.1 s), as a ratio to its floor: reading and parsing both
 # files with fast_float (bench/parse_floor.cc). The floor and the commands
 # run side by side, interleaved, REPETITIONS times (default 11) after a

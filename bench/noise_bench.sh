@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Whole-process speed and memory of `mpcal noise` (issue 18) on an 8-hour
+# Whole-process speed and memory of `mpcal noise` on an 8-hour
 # still recording at 400 Hz (11.5 M rows of accelerometer and gyroscope,
 # about 1 GB of text), as a ratio to the parse floor measured in the same
 # run (bench/parse_floor.cc: read the file and parse every number with

@@ -1,4 +1,4 @@
-// Kernels of `mpcal calibrate` and `mpcal apply` on long logs (issue 4):
+// Kernels of `mpcal calibrate` and `mpcal apply` on long logs:
 // reading a log (ReadLog) against the floor of parsing its numbers with
 // fast_float alone, streaming a correction (ApplyCalibration), and the
 // per-row correction itself, eqs 8-10 as written (trigonometry per call)

@@ -1,5 +1,5 @@
-// The speed floor of issue 4: read a text log and parse every number in it
-// with fast_float, nothing more (no columns, no checks, no storage). With
+// The speed floor of calibrate and apply: read a text log and parse every
+// number in it with fast_float, nothing more (no columns, no checks, no storage). With
 // --write OUT it also writes every number back with std::to_chars (the
 // separators copied as they are), the floor of `mpcal apply`.
 //

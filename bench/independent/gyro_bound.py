@@ -1,7 +1,7 @@
 """The Cramér-Rao bound of the gyroscope matrix M for a session of gen_imu_session.py,
 from the generator's own truth and noise figures (not from mpcal).
 
-The measurement model is the one the turn-residual estimator uses (issue 17):
+The measurement model is the one the turn-residual estimator uses:
 for each turn k from static position k to k+1, the gravity direction measured
 at the end of position k, carried over the turn by the gyroscope,
     R_k(M) = prod_i Exp(phi_i),  phi_i = (M r_i + M r_i+1)/2 dt + (M r_i dt x M r_i+1 dt)/12,

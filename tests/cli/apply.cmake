@@ -49,7 +49,7 @@ mpcal_cli_test(apply_missing_calib EXIT 1 MATCH "cannot read calibration file" A
 add_test(NAME cli.apply_pipe
   COMMAND sh -c "cat '${_log}' | '$<TARGET_FILE:mpcal_cli>' apply '${_calib}' - -o - | grep -c ',OK$' | grep -qx 240")
 set_tests_properties(cli.apply_pipe PROPERTIES LABELS cli)
-# Issue 14: with --out-units g the header's unit labels follow (phyphox's
+# With --out-units g the header's unit labels follow (phyphox's
 # "(m/s^2)" becomes "(g)"). (Numbers are already the shortest that read
 # back: std::to_chars.)
 mpcal_cli_test(apply_out_units_relabels_header EXIT 0

@@ -159,7 +159,7 @@ mpcal_cli_test(bad_detect_all_clipped EXIT 1
 mpcal_cli_test(bad_output_walk_truth_unwritable EXIT 1 MATCH "is a directory"
   ABSENT w.csv g.pos ARGS simulate walk -o w.csv --gnss g.pos --truth .)
 
-# Outputs that are not regular files (issue 14): a device node, a FIFO or a
+# Outputs that are not regular files: a device node, a FIFO or a
 # link is never replaced by a regular file; /dev/full and a closed or full
 # standard output are errors; an empty name is a usage error. Every command
 # that writes, each way (tests/cli/output_case.sh makes the node or link).
@@ -204,7 +204,7 @@ output_cases(verify verify --imu ${_walk_dir}/walk.csv --gnss ${_walk_dir}/ref.p
 output_cases(report report --calib ${MPCAL_TEST_DATA}/report/calib.json -o @OUT@)
 output_cases(simulate simulate static --positions 2 --dwell 1 -o @OUT@)
 
-# Readers given a device (issue 14): refused at once, not read to the end.
+# Readers given a device: refused at once, not read to the end.
 # `timeout` makes a hang fail fast (exit 124, not 1).
 function(device_input_case name match)
   add_test(NAME cli.${name}
@@ -249,18 +249,18 @@ shell_case(bad_pipe_repeat_urandom 1 "not a text log"
   "timeout 20 \"$0\" repeat '${GOOD_CALIB}' <(cat /dev/urandom) --json out.json")
 
 # repeat reads each input once: pipes and process substitutions work, for
-# calibration files and logs alike (issue 14: "too few columns").
+# calibration files and logs alike ("too few columns").
 shell_case(repeat_process_substitution_json 0 "/dev/fd/[0-9]+: calibration file"
   "\"$0\" repeat <(cat '${MPCAL_TEST_DATA}/paper/colibri_trial1.json') <(cat '${MPCAL_TEST_DATA}/paper/colibri_trial2.json')")
 shell_case(repeat_process_substitution_log 0 "/dev/fd/[0-9]+: calibrated, [0-9]+ positions"
   "\"$0\" repeat <(cat '${_session}') '${GOOD_CALIB}'")
 
-# Warnings are held back when the command fails: one line (issue 14: all
+# Warnings are held back when the command fails: one line (all
 # timestamps zero printed two or three warnings before the error).
 shell_case(bad_calibrate_zero_times_one_line 1 "after .*warning"
   "awk -F, 'NR==1{print;next}{$1=0; print}' OFS=, '${_session}' > zero.csv && exec \"$0\" calibrate zero.csv -o out.json")
 
-# Physically impossible readings: an error naming the line (issue 14: one
+# Physically impossible readings: an error naming the line (one
 # row of 1e308 gave 'threshold -nan', one of 1e20 dropped positions).
 shell_case(bad_calibrate_huge_row_1e308 1
   "huge.csv:100: reading '1e308' in column 'ax' \\(index 1\\) is beyond any accelerometer's range"
@@ -271,7 +271,7 @@ shell_case(bad_detect_huge_row_1e20 1
 shell_case(bad_calibrate_huge_times 1 "a time of [0-9.]+e\\+30[0-9] s is beyond any logger's clock"
   "awk -F, 'NR==1{print;next}{$1=$1*1e300; print}' OFS=, '${_session}' > t.csv && exec \"$0\" calibrate t.csv")
 
-# Absurd but finite values in a calibration file (issue 14: a bias of
+# Absurd but finite values in a calibration file (a bias of
 # 1e308 was applied), in ranges stated once (include/mpcal/plausible.h).
 shell_case(bad_apply_huge_bias 1 "'bias_mps2\\[0\\]' = 1e\\+308 is beyond any accelerometer's bias"
   "sed '0,/-0.6860732339999999/s//1e308/' '${GOOD_CALIB}' > c.json && exec \"$0\" apply c.json '${GOOD_LOG}' -o out.csv")

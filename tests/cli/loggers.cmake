@@ -1,4 +1,4 @@
-# Logs as loggers write them (issue 14): each calibrates with no hand edit.
+# Logs as loggers write them: each calibrates with no hand edit.
 # The files and how they were made: tests/data/loggers/README.md.
 set(_lg ${MPCAL_TEST_DATA}/loggers)
 # Arduino MPU-6050 over serial: noise and boot messages before the header,

@@ -83,7 +83,7 @@ mpcal_cli_test(report_noise EXIT 0 MATCH "wrote r\\.html \\(noise\\)"
 mpcal_cli_test(report_noise_not_a_noise_file EXIT 1 MATCH "noise file .*format" ABSENT r.html
   ARGS report --noise ${MPCAL_TEST_DATA}/bad/valid_calib.json -o r.html)
 
-# A 10-minute simulated record (consumer preset, 100 Hz; issue 18): the random
+# A 10-minute simulated record (consumer preset, 100 Hz): the random
 # walks cannot be measured, so no number: their bounds, and how long to record
 # (the record in which a random walk at the bound would be measured 9 times in
 # 10, and at half the bound).

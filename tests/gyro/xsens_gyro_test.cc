@@ -1,4 +1,4 @@
-// The anchor of issue 17: imu_tk's Xsens recording, accelerometer and
+// The gyroscope's anchor: imu_tk's Xsens recording, accelerometer and
 // gyroscope in two files of raw counts merged by row. imu_tk's own
 // parameters carry gravity over the 37 turns to 0.57° RMS (0.34° with a bias
 // measured at every position); an independent general-M fit reaches 0.31°.

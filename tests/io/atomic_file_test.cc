@@ -136,8 +136,9 @@ TEST(AtomicFile, UnwritableDirectory) {
   std::filesystem::permissions(dir.path() / "ro", std::filesystem::perms::owner_all);
 }
 
-// Issue 14: a rename over a device node or a link replaced it with a
-// regular file (as root, `-o /dev/null` would have replaced the system's).
+// A rename over a device node or a link would replace it with a regular
+// file (as root, `-o /dev/null` would replace the system's): the link is
+// followed and its target replaced instead.
 TEST(AtomicFile, SymlinkIsFollowedAndItsTargetReplaced) {
   ScratchDir dir;
   const std::string target = dir.Write("target.json", "old");

@@ -542,7 +542,7 @@ TEST(LogScanner, KeepsEveryLineAndTheSpansOfTheNumbers) {
   EXPECT_EQ(scanner.layout().time_column, 0);
 }
 
-// Issue 14: loggers as they are.
+// Loggers as they are.
 TEST(ReadLog, SerialBootTextBeforeTheHeaderIsSkippedWithAWarning) {
   ScratchDir dir;
   std::string log = std::string("\xf8\x00\xfe\x1c", 4) +

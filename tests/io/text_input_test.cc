@@ -34,7 +34,7 @@ TEST(TextInput, ReadsARegularFileWhole) {
   EXPECT_EQ(ReadTextInput(path, 100, "calibration file"), "{\"format\": 1}\n");
 }
 
-// Issue 14: /dev/zero was read to the end (0.9 GB in 20 s) before any check.
+// A device is refused before any byte is read (/dev/zero would give 0.9 GB in 20 s).
 TEST(TextInput, RefusesDevicesBeforeReading) {
   EXPECT_THAT(ErrorOf("/dev/zero", 1 << 20),
               HasSubstr("'/dev/zero' is a character device, not a calibration file"));

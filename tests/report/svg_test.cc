@@ -145,7 +145,7 @@ TEST(SphereMap, TheCubePositionsCoverAllTwentySixDirections) {
   std::vector<CanonicalDirection> c = CanonicalCoverage(points);
   ASSERT_EQ(c.size(), 26u);
   for (const CanonicalDirection& d : c) EXPECT_TRUE(d.covered) << d.name;
-  // Named as detect names them, by what points down (issue 14: the report
+  // Named as detect names them, by what points down (the report
   // named the reading direction, detect the face down: opposite names).
   for (const CanonicalDirection& d : c) {
     if (d.direction.isApprox(Eigen::Vector3d::UnitZ())) {
@@ -181,8 +181,8 @@ TEST(SphereMap, TheCubePositionsCoverAllTwentySixDirections) {
   EXPECT_THAT(covered(about_x(21.0), false), ElementsAre());  // excluded: never
 }
 
-// Issue 14: two positions in one orientation (1 and 6 at the pole) drew
-// their labels over each other ("16"); each label now clears the others.
+// Two positions in one orientation (1 and 6 at the pole): each label clears
+// the others instead of drawing over them ("16").
 TEST(SphereMap, LabelsOfPositionsInOneOrientationDoNotOverlap) {
   SphereMapSpec spec;
   spec.points = {{Eigen::Vector3d::UnitZ(), "1", true},

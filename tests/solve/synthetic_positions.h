@@ -68,7 +68,7 @@ inline SyntheticSession MakeSession(const ErrorModel& truth,
   return s;
 }
 
-/// Errors of a consumer-grade part (issue #2: bias 0.3 g, scale 6 %,
+/// Errors of a consumer-grade part (bias 0.3 g, scale 6 %,
 /// non-orthogonality 0.02 rad).
 inline ErrorModel ConsumerGrade() {
   ErrorModel m;
