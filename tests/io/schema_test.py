@@ -374,6 +374,8 @@ def broken_copies(schemas, documents):
             ("no coverage", False, lambda d: remove(d, "coverage")),
             ("a 2-vector mean", False, lambda d: put(d, [1.0, 2.0], "intervals", 0, "mean")),
             ("an unknown verdict", False, lambda d: put(d, "fine", "coverage", "verdict")),
+            ("a reading beyond any accelerometer's", False,
+             lambda d: put(d, 3e9, "intervals", 0, "mean", 2)),
             ("a string turn angle", False, lambda d: put(d, "89", "turns", 0, "angle_deg")),
         ],
         "repeat.json": [
