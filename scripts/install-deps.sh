@@ -21,6 +21,7 @@ packages=(
   chromium             # headless rendering of the HTML report in tests
   python3              # checks the rendered report's DOM and screenshot
   python3-numpy        # bench/independent generators (gen_imu_session.py, gen_still.py)
+  python3-jsonschema   # tests/io/schema_test.py: the written files against docs/schemas/
   clang                # libFuzzer targets (make fuzz)
   clang-format         # the code's layout, checked by scripts/lint.sh (.ci/run)
   clang-tidy           # bug-prone patterns and function size, scripts/lint.sh
