@@ -1,5 +1,6 @@
-# `cmake --install`: headers, the room libraries under the export set
-# mpcal::, and a package config so that find_package(mpcal) works.
+# `cmake --install`: the command with its man pages and bash completion, the
+# headers, the room libraries under the export set mpcal::, and a package
+# config so that find_package(mpcal) works.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -12,6 +13,11 @@ install(TARGETS mpcal ${_rooms} EXPORT mpcalTargets
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY include/mpcal DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(TARGETS mpcal_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The man pages and the completion the build wrote (apps/mpcal/CMakeLists.txt).
+install(DIRECTORY ${MPCAL_MAN_DIR}/ DESTINATION ${CMAKE_INSTALL_MANDIR}/man1
+        FILES_MATCHING PATTERN "*.1")
+install(FILES ${MPCAL_COMPLETION}
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions)
 install(EXPORT mpcalTargets NAMESPACE mpcal::
         DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/mpcal)
 configure_package_config_file(cmake/mpcalConfig.cmake.in
