@@ -17,10 +17,15 @@ and the C++ library with its headers and CMake package (find_package(mpcal)).")
 set(MPCAL_PACKAGE_CONTACT "mpcal maintainers <maintainers@users.noreply.h-seed-34f1b310.example>"
     CACHE STRING "Maintainer field of the Debian package")
 set(CPACK_PACKAGE_CONTACT "${MPCAL_PACKAGE_CONTACT}")
-set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS
     "libeigen3-dev, libceres-dev, libgeographiclib-dev, nlohmann-json3-dev, libfmt-dev, libfast-float-dev")
+# `make package_source` (which include(CPack) adds): the tracked tree as a
+# tarball, without git or build folders; built from it, `mpcal --version`
+# says "revision unknown".
+set(CPACK_SOURCE_GENERATOR TGZ)
+set(CPACK_SOURCE_IGNORE_FILES "/[.]git$" "/[.]git/" "/build[^/]*/" "/[.]cache/" "/mpcal-demo/"
+    "__pycache__")
 include(CPack)
