@@ -36,6 +36,7 @@ develop=(
   clang-format         # the code's layout, checked by scripts/lint.sh (.ci/run)
   clang-tidy           # bug-prone patterns and function size, scripts/lint.sh
   man-db groff-base    # the man pages rendered without a warning (tests/cli/man_pages.sh)
+  zsh                  # the zsh completion checked (tests/cli/completion_zsh.zsh)
 )
 
 case ${1:-all} in

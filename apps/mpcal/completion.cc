@@ -1,6 +1,7 @@
-// The bash completion, written from the CLI11 tables: three lookup functions
-// (the subcommands of a command, its flags, what a flag takes) generated from
-// them, and one fixed function that walks the words typed so far.
+// The bash and zsh completion, written from the CLI11 tables: three lookup
+// functions (the subcommands of a command, its flags, what a flag takes)
+// generated from them, and for each shell one fixed function that walks the
+// words typed so far.
 #include <string>
 #include <vector>
 
@@ -74,10 +75,26 @@ void AddCommand(const CLI::App& app, Tables& tables) {
   for (const CLI::App* sub : Subcommands(app)) AddCommand(*sub, tables);
 }
 
+// The three lookups, in shell code both bash and zsh read.
+std::string Lookups(const CLI::App& root) {
+  Tables tables;
+  AddCommand(root, tables);
+  return fmt::format(
+      "# The subcommands of a command ('' is mpcal itself).\n"
+      "_mpcal_subcommands() {{\n  case $1 in\n{}  esac\n}}\n\n"
+      "# The flags of a command.\n"
+      "_mpcal_flags() {{\n  case $1 in\n{}  esac\n}}\n\n"
+      "# What follows a command's flag: flag (nothing), choices NAME..., file or value.\n"
+      "_mpcal_takes() {{\n  case \"$1 $2\" in\n{}    *) echo flag ;;\n  esac\n}}\n",
+      tables.subcommands,
+      tables.flags,
+      tables.takes);
+}
+
 // The fixed part. The command is found from the subcommand words typed
 // before the cursor, skipping each flag's value (the next word, or "=" and
 // the word after it: bash splits --units=g at the "=").
-constexpr const char* kCompleter = R"bash(
+constexpr const char* kBashCompleter = R"bash(
 _mpcal() {
   local cur=${COMP_WORDS[COMP_CWORD]} command='' option='' takes word i=1
   while ((i < COMP_CWORD)); do
@@ -127,24 +144,58 @@ _mpcal() {
 complete -F _mpcal mpcal
 )bash";
 
+// The same walk in zsh's terms: words and CURRENT, compadd and _files;
+// zsh keeps --units=g one word, and compset moves past its "=".
+constexpr const char* kZshCompleter = R"zsh(
+local cur=$PREFIX command='' option='' takes word i=2
+while (( i < CURRENT )); do
+  word=${words[i]}
+  if [[ $word == -*=* ]]; then
+    :
+  elif [[ $word == -* ]]; then
+    if [[ $(_mpcal_takes "$command" "$word") != flag ]]; then (( i += 1 )); fi
+  elif [[ " $(_mpcal_subcommands "$command") " == *" $word "* ]]; then
+    command=${command:+$command }$word
+  fi
+  (( i += 1 ))
+done
+if [[ $cur == -*=* ]]; then
+  option=${cur%%=*}
+  compset -P '*='
+elif (( CURRENT > 2 )) && [[ ${words[CURRENT - 1]} == -* ]]; then
+  option=${words[CURRENT - 1]}
+fi
+if [[ -n $option ]]; then
+  takes=$(_mpcal_takes "$command" "$option")
+  case $takes in
+    (choices\ *) compadd -- ${=takes#choices }; return ;;
+    (file) _files; return ;;
+    (value) return 1 ;;
+  esac
+fi
+if [[ $cur == -* ]]; then
+  compadd -- ${=$(_mpcal_flags "$command")}
+elif [[ -n $(_mpcal_subcommands "$command") ]]; then
+  compadd -- ${=$(_mpcal_subcommands "$command")}
+else
+  _files
+fi
+)zsh";
+
 }  // namespace
 
 std::string BashCompletion(const CLI::App& root) {
-  Tables tables;
-  AddCommand(root, tables);
-  return fmt::format(
-      "# bash completion for mpcal, written by `mpcal --generate bash` from the flags\n"
-      "# `mpcal --help` lists.\n\n"
-      "# The subcommands of a command ('' is mpcal itself).\n"
-      "_mpcal_subcommands() {{\n  case $1 in\n{}  esac\n}}\n\n"
-      "# The flags of a command.\n"
-      "_mpcal_flags() {{\n  case $1 in\n{}  esac\n}}\n\n"
-      "# What follows a command's flag: flag (nothing), choices NAME..., file or value.\n"
-      "_mpcal_takes() {{\n  case \"$1 $2\" in\n{}    *) echo flag ;;\n  esac\n}}\n{}",
-      tables.subcommands,
-      tables.flags,
-      tables.takes,
-      kCompleter);
+  return "# bash completion for mpcal, written by `mpcal --generate bash` from the "
+         "flags\n"
+         "# `mpcal --help` lists.\n\n" +
+         Lookups(root) + kBashCompleter;
+}
+
+std::string ZshCompletion(const CLI::App& root) {
+  return "#compdef mpcal\n"
+         "# zsh completion for mpcal, written by `mpcal --generate zsh` from the flags\n"
+         "# `mpcal --help` lists. zsh runs this file as the function _mpcal.\n\n" +
+         Lookups(root) + kZshCompleter;
 }
 
 }  // namespace mpcal::cli

@@ -50,13 +50,14 @@ int Generate(const CLI::App& root, const std::vector<std::string>& args) {
     }
     return 0;
   }
-  if (args.size() == 2 && args[0] == "bash") {
-    WriteFileAtomically(args[1], BashCompletion(root));
+  if (args.size() == 2 && (args[0] == "bash" || args[0] == "zsh")) {
+    WriteFileAtomically(args[1],
+                        args[0] == "bash" ? BashCompletion(root) : ZshCompletion(root));
     return 0;
   }
   throw CLI::ValidationError("--generate",
-                             "give 'man DIRECTORY' (the man pages) or 'bash FILE' (the "
-                             "completion script; '-' for standard output)");
+                             "give 'man DIRECTORY' (the man pages), 'bash FILE' or 'zsh "
+                             "FILE' (the completion; '-' for standard output)");
 }
 
 }  // namespace mpcal::cli

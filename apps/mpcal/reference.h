@@ -1,5 +1,5 @@
 // The command's reference written from the CLI11 flag table that `--help`
-// prints: a man page per command and the bash completion. The build runs
+// prints: a man page per command and the bash and zsh completion. The build runs
 // `mpcal --generate` to write them, so neither can drift from the flags.
 #pragma once
 
@@ -12,9 +12,10 @@
 namespace mpcal::cli {
 
 /// `mpcal --generate man DIR` writes every man page into the directory DIR
-/// (which must exist); `mpcal --generate bash FILE` writes the bash
-/// completion script ("-": standard output). `args` are the words after `--generate`.
-/// Returns the exit code. \throws CLI::ValidationError for other words (a usage error),
+/// (which must exist); `mpcal --generate bash FILE` and `zsh FILE` write
+/// the completion for that shell ("-": standard output). `args` are the words after
+/// `--generate`. Returns the exit code. \throws CLI::ValidationError for other words (a
+/// usage error),
 ///   mpcal::Error when a page cannot be written.
 int Generate(const CLI::App& root, const std::vector<std::string>& args);
 
@@ -28,6 +29,10 @@ std::vector<std::pair<std::string, std::string>> ManualPages(
 /// subcommands, each command's flags, the choices of enum flags, file names
 /// for the other text values.
 std::string BashCompletion(const CLI::App& root);
+
+/// The same for zsh: a `#compdef mpcal` file for a folder on $fpath, which
+/// zsh runs as the function _mpcal.
+std::string ZshCompletion(const CLI::App& root);
 
 // Shared by both writers.
 

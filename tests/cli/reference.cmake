@@ -9,6 +9,14 @@ add_test(NAME cli.man_pages
 add_test(NAME cli.bash_completion
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/completion.sh $<TARGET_FILE:mpcal_cli>
           ${MPCAL_COMPLETION})
+# zsh is not needed to build or use mpcal: without it the check is skipped.
+find_program(MPCAL_ZSH zsh)
+if(MPCAL_ZSH)
+  add_test(NAME cli.zsh_completion
+    COMMAND ${MPCAL_ZSH} -f ${CMAKE_CURRENT_SOURCE_DIR}/completion_zsh.zsh
+            $<TARGET_FILE:mpcal_cli> ${MPCAL_ZSH_COMPLETION})
+  set_tests_properties(cli.zsh_completion PROPERTIES LABELS cli)
+endif()
 mpcal_cli_test(generate_unknown EXIT 2 MATCH "mpcal: error: --generate: give 'man DIRECTORY'"
   ARGS --generate html)
 mpcal_cli_test(generate_missing_dir EXIT 1 MATCH "mpcal: error: .*no-such-dir"

@@ -3,7 +3,7 @@
 # (cmake/MpcalPackage.cmake) and checks it as a user would meet it: every
 # package it Depends on is installed here at a version it accepts; unpacked
 # into a fresh folder, its mpcal prints the build's version and runs the
-# demo, its man pages render without a warning, and it holds the bash
+# demo, its man pages render without a warning, and it holds the bash and zsh
 # completion, the headers and the CMake package files.
 #   deb.sh BUILD_DIR SCRATCH_DIR
 set -u
@@ -60,6 +60,7 @@ elif [ -s "$scratch/man.err" ]; then
   echo "FAIL: man warns on $page:"; cat "$scratch/man.err"; fail=1
 fi
 for f in usr/share/man/man1/mpcal.1 usr/share/bash-completion/completions/mpcal \
+         usr/share/zsh/vendor-completions/_mpcal \
          usr/include/mpcal/calibrate.h; do
   [ -f "$root/$f" ] || { echo "FAIL: the package has no /$f"; fail=1; }
 done
