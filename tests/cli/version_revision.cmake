@@ -4,11 +4,21 @@
 # The revision is asked of git here, apart from cmake/MpcalGitRevision.cmake;
 # that script is then run on a folder that is not the top of a checkout,
 # where it must say "unknown".
+# A source tree inside some other checkout (a tarball unpacked there) is not
+# that checkout's revision: "unknown" too.
+execute_process(COMMAND git rev-parse --show-toplevel
+  WORKING_DIRECTORY ${SOURCE_DIR}
+  OUTPUT_VARIABLE toplevel OUTPUT_STRIP_TRAILING_WHITESPACE
+  RESULT_VARIABLE not_git ERROR_QUIET)
 execute_process(COMMAND git describe --always --dirty
   WORKING_DIRECTORY ${SOURCE_DIR}
   OUTPUT_VARIABLE revision OUTPUT_STRIP_TRAILING_WHITESPACE
-  RESULT_VARIABLE not_git ERROR_QUIET)
-if(not_git)
+  RESULT_VARIABLE describe_failed ERROR_QUIET)
+if(NOT not_git)
+  file(REAL_PATH "${toplevel}" toplevel)
+  file(REAL_PATH "${SOURCE_DIR}" source_real)
+endif()
+if(not_git OR describe_failed OR NOT toplevel STREQUAL source_real)
   set(revision unknown)
 endif()
 execute_process(COMMAND ${MPCAL} --version
