@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
-"""Runs the commands shown in README.md and compares (or replaces) their output.
+"""Runs the commands shown in README.md and docs/ and compares (or replaces)
+their output.
 
-The README shows commands as `$ command` lines inside fenced blocks, each
-followed by what it printed. This script runs every block in a scratch
+The README and the pages under docs/ show commands as `$ command` lines
+inside fenced blocks, each followed by what it printed. This script runs every block in a scratch
 directory of its own (with the repository's `tests/`, `bench/` and the build's
 `mpcal` reachable, so the paths a clone has work), feeding each command to
-bash with stderr merged into stdout, and then either checks that the README
+bash with stderr merged into stdout, and then either checks that each page
 shows what the commands print today (`--check`, run by CI) or writes the new
-output into the README (`--update`).
+output into the page (`--update`).
 
   - A line `...` in the README's output stands for any number of lines (used
     to shorten long outputs); --update keeps the same number of lines before
@@ -26,9 +27,11 @@ output into the README (`--update`).
     in the scratch directory of the block run before it, with the files its
     commands wrote (an output shown in two parts of the README).
 
-  scripts/readme_run.py --check  [--build build] [--readme README.md]
-  scripts/readme_run.py --update [--build build] [--readme README.md]
-  scripts/readme_run.py --marks  [--readme README.md]
+  scripts/readme_run.py --check  [--build build] [--readme PAGE ...]
+  scripts/readme_run.py --update [--build build] [--readme PAGE ...]
+  scripts/readme_run.py --marks  [--readme PAGE ...]
+
+Without --readme, every page: README.md and docs/**/*.md.
 """
 import argparse
 import datetime
@@ -174,33 +177,19 @@ def shortened(expected, actual):
     return actual[:k] + [expected[k]] + (actual[len(actual) - after:] if after else [])
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    mode = ap.add_mutually_exclusive_group(required=True)
-    mode.add_argument("--check", action="store_true")
-    mode.add_argument("--update", action="store_true")
-    mode.add_argument("--marks", action="store_true")
-    ap.add_argument("--build", default="build")
-    ap.add_argument("--readme", default="README.md")
-    args = ap.parse_args()
+def documents(root, given):
+    """The pages to run: those given, else README.md and every page under docs/."""
+    if given:
+        return given
+    pages = [os.path.join(root, "README.md")]
+    for folder, _, files in sorted(os.walk(os.path.join(root, "docs"))):
+        pages += [os.path.join(folder, f) for f in sorted(files) if f.endswith(".md")]
+    return pages
 
-    with open(args.readme, encoding="utf-8") as f:
-        lines = f.read().split("\n")
-    bad_marks = check_marks(lines)
-    for number, problem in bad_marks:
-        print(f"{args.readme}:{number}: {problem}", file=sys.stderr)
-    if args.marks:
-        skipped = sum(1 for line in lines if is_skip_mark(line))
-        print(f"readme_run: {skipped} skip marks, {len(bad_marks)} without a valid date "
-              "and command")
-        return 1 if bad_marks else 0
 
-    root = os.path.dirname(os.path.abspath(args.readme))
-    build = os.path.abspath(args.build)
-    if not os.access(os.path.join(build, "mpcal"), os.X_OK):
-        sys.exit(f"readme_run: {build}/mpcal not built (make build)")
-
+def run_page(page, lines, root, build, check):
+    """Runs the blocks of one page; (new lines, blocks run, outputs that differ)."""
+    name = os.path.relpath(page, root)
     failures, ran = 0, 0
     new_lines, cursor = [], 0
     scratch = None
@@ -218,11 +207,11 @@ def main():
         for (command, expected), actual in zip(steps, outputs):
             if not matches(expected, actual):
                 failures += 1
-                if args.check:
-                    print(f"README.md:{start + 1}: `$ {command}` printed:", file=sys.stderr)
+                if check:
+                    print(f"{name}:{start + 1}: `$ {command}` printed:", file=sys.stderr)
                     for l in actual[:40]:
                         print("    " + l, file=sys.stderr)
-                    print("  the README shows:", file=sys.stderr)
+                    print("  the page shows:", file=sys.stderr)
                     for l in expected[:40]:
                         print("    " + l, file=sys.stderr)
             block.append("$ " + command)
@@ -233,14 +222,55 @@ def main():
     new_lines.extend(lines[cursor:])
     if scratch is not None:
         scratch.cleanup()
+    return new_lines, ran, failures
 
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    mode = ap.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--check", action="store_true")
+    mode.add_argument("--update", action="store_true")
+    mode.add_argument("--marks", action="store_true")
+    ap.add_argument("--build", default="build")
+    ap.add_argument("--readme", action="append",
+                    help="a page to run (repeatable); default README.md and docs/**/*.md")
+    args = ap.parse_args()
+
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    pages = documents(root, args.readme)
+    texts = {}
+    bad_marks = []
+    for page in pages:
+        with open(page, encoding="utf-8") as f:
+            texts[page] = f.read().split("\n")
+        for number, problem in check_marks(texts[page]):
+            bad_marks.append(page)
+            print(f"{os.path.relpath(page, root)}:{number}: {problem}", file=sys.stderr)
+    if args.marks:
+        skipped = sum(1 for lines in texts.values() for line in lines if is_skip_mark(line))
+        print(f"readme_run: {skipped} skip marks, {len(bad_marks)} without a valid date "
+              "and command")
+        return 1 if bad_marks else 0
+
+    build = os.path.abspath(args.build)
+    if not os.access(os.path.join(build, "mpcal"), os.X_OK):
+        sys.exit(f"readme_run: {build}/mpcal not built (make build)")
+
+    failures, ran = 0, 0
+    for page in pages:
+        new_lines, page_ran, page_failures = run_page(page, texts[page], root, build,
+                                                      args.check)
+        ran += page_ran
+        failures += page_failures
+        if args.update and page_failures:
+            with open(page, "w", encoding="utf-8") as f:
+                f.write("\n".join(new_lines))
     if args.update:
-        with open(args.readme, "w", encoding="utf-8") as f:
-            f.write("\n".join(new_lines))
-        print(f"readme_run: {ran} blocks run, {failures} outputs updated")
+        print(f"readme_run: {len(pages)} pages, {ran} blocks run, {failures} outputs updated")
         return 0
-    print(f"readme_run: {ran} blocks run, {failures} outputs differ from the README, "
-          f"{len(bad_marks)} skip marks without a valid date and command")
+    print(f"readme_run: {len(pages)} pages, {ran} blocks run, {failures} outputs differ "
+          f"from the pages, {len(bad_marks)} skip marks without a valid date and command")
     return 1 if failures or bad_marks else 0
 
 

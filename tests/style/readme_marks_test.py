@@ -89,12 +89,16 @@ def main():
         print(f"FAIL --check passes a skip mark without date and command:\n{out}")
         failures += 1
 
-    readme = (root / "README.md").read_text(encoding="utf-8").split("\n")
-    for number, problem in rr.check_marks(readme):
-        print(f"FAIL README.md:{number}: {problem}")
-        failures += 1
-    marks = sum(1 for line in readme if rr.is_skip_mark(line))
-    print(f"{len(cases) + 3} examples, {marks} skip marks in README.md, {failures} failures")
+    marks = 0
+    pages = rr.documents(str(root), None)
+    for page in pages:
+        lines = pathlib.Path(page).read_text(encoding="utf-8").split("\n")
+        for number, problem in rr.check_marks(lines):
+            print(f"FAIL {os.path.relpath(page, root)}:{number}: {problem}")
+            failures += 1
+        marks += sum(1 for line in lines if rr.is_skip_mark(line))
+    print(f"{len(cases) + 3} examples, {marks} skip marks in {len(pages)} pages, "
+          f"{failures} failures")
     return 1 if failures else 0
 
 
