@@ -17,8 +17,9 @@ FOLDERS = ["apps", "bench", "docs", "examples", "fuzz", "include", "scripts", "s
 SUFFIXES = {".h", ".cc", ".cpp", ".py", ".sh", ".md", ".txt", ".cmake"}
 CITATION = re.compile(r"docs/method\.md((?:\s*(?:§|sections?\s)\s*[\d.]+(?:\s*(?:,|and)\s*§?\s*[\d.]+)*)?)")
 NUMBER = re.compile(r"\d+(?:\.\d+)?")
-# A file name "METHOD.md" on its own, not the path of the repository's document.
-STRAY = re.compile(r"(?<![\w/])" + "METHOD" + r"\.md", re.IGNORECASE)
+# "METHOD.md" on its own, in upper case: not the repository's document (a
+# relative link to method.md inside docs/ is the document itself).
+STRAY = re.compile(r"(?<![\w/])" + "METHOD" + r"\.md")
 HEADING = re.compile(r"^#{2,3} (\d+(?:\.\d+)?)\.? ")
 
 
