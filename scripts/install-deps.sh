@@ -16,6 +16,7 @@ packages=(
   nlohmann-json3-dev   # calibration and result files
   libfmt-dev           # tables and messages
   libfast-float-dev    # parsing numbers from logs
+  libyaml-cpp-dev      # Kalibr's imu.yaml (written by the noise analysis)
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev
   chromium             # headless rendering of the HTML report in tests
