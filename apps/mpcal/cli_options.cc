@@ -31,6 +31,24 @@ CLI::Validator NumberAtLeast(bool allow_zero) {
 
 const CLI::Validator PositiveNumber = NumberAtLeast(false);
 const CLI::Validator NonNegativeNumber = NumberAtLeast(true);
+
+CLI::Validator NumberIn(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        double v = 0.0;
+        if (CLI::detail::lexical_cast(text, v) && v >= lo && v <= hi) return "";
+        return fmt::format("must be a number in [{}, {}], got '{}'", lo, hi, text);
+      },
+      fmt::format("FLOAT in [{} - {}]", lo, hi));
+}
+
+const CLI::Validator FiniteNumber(
+    [](std::string& text) -> std::string {
+      double v = 0.0;
+      if (CLI::detail::lexical_cast(text, v) && std::isfinite(v)) return "";
+      return fmt::format("must be a finite number, got '{}'", text);
+    },
+    "FLOAT");
 const CLI::Validator OutputPath(
     [](const std::string& text) -> std::string {
       return text.empty()
@@ -113,17 +131,18 @@ void AddGravityOptions(CLI::App& app, GravityFlags& flags) {
                            flags.gravity_mps2,
                            "Local magnitude of gravity (m/s2); default 9.80665, "
                            "the standard value the paper uses")
-                ->check(CLI::Range(kMinGravityMps2, kMaxGravityMps2))
+                ->check(NumberIn(kMinGravityMps2, kMaxGravityMps2))
                 ->group("Gravity");
   auto* lat = app.add_option(std::string(FlagName(Option::kLatitude)),
                              flags.latitude_deg,
                              "Geodetic latitude of the site (deg): use the WGS84 "
                              "normal gravity there")
-                  ->check(CLI::Range(-90.0, 90.0))
+                  ->check(NumberIn(-90.0, 90.0))
                   ->group("Gravity");
   app.add_option(std::string(FlagName(Option::kHeight)),
                  flags.height_m,
                  "Ellipsoidal height of the site (m), with --latitude")
+      ->check(FiniteNumber)
       ->needs(lat)
       ->group("Gravity");
   g->excludes(lat);
@@ -152,7 +171,7 @@ void AddDetectOptions(CLI::App& app, DetectOptions& detect) {
                  detect.threshold_factor,
                  "Static detection: threshold as a multiple of the quiet level")
       ->capture_default_str()
-      ->check(CLI::Range(1.0, 100.0))
+      ->check(NumberIn(1.0, 100.0))
       ->group("Static detection");
   app.add_option(std::string(FlagName(Option::kDetectMaxStill)),
                  detect.max_still_g,
@@ -181,7 +200,7 @@ void AddDetectOptions(CLI::App& app, DetectOptions& detect) {
                  detect.merge_angle_deg,
                  "Static detection: ... and closer than this in orientation (deg)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 180.0))
+      ->check(NumberIn(0.0, 180.0))
       ->group("Static detection");
 }
 

@@ -58,6 +58,13 @@ void AddCalibrateOptions(CLI::App& app, CalibrateOptions& options);
 /// positive number, got -1").
 extern const CLI::Validator PositiveNumber;
 extern const CLI::Validator NonNegativeNumber;
+/// A number in [lo, hi]. CLI::Range lets NaN through (every comparison with
+/// it is false), and the value then fails later as an error of the run
+/// rather than of the flag; this check refuses it ("--confidence: must be a
+/// number in [0.5, 0.999], got 'nan'").
+CLI::Validator NumberIn(double lo, double hi);
+/// Any finite number (not nan, not inf).
+extern const CLI::Validator FiniteNumber;
 
 /// Check for an output file name: not empty (`-o ''` is a slip, not a
 /// request to write nothing).

@@ -444,13 +444,13 @@ void AddNoiseCommand(CLI::App& root) {
                   f->noise.allan.points_per_octave,
                   "Cluster times per factor of two")
       ->capture_default_str()
-      ->check(PositiveNumber & CLI::Range(1.0, 64.0))
+      ->check(NumberIn(1.0, 64.0))
       ->group("Allan deviation");
   app->add_option("--confidence",
                   f->noise.allan.confidence,
                   "Confidence level of the intervals (curve and terms)")
       ->capture_default_str()
-      ->check(PositiveNumber & CLI::Range(0.5, 0.999))
+      ->check(NumberIn(0.5, 0.999))
       ->group("Allan deviation");
   AddLogOptions(*app,
                 f->log,

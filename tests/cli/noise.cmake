@@ -178,3 +178,8 @@ mpcal_cli_test(noise_confidence_nan EXIT 2 MATCH "--confidence"
   ARGS noise ${_still} --confidence nan)
 mpcal_cli_test(noise_json_removed_when_kalibr_fails EXIT 1 MATCH "/dev/full" ABSENT n.json
   ARGS noise ${_still} --json n.json --kalibr /dev/full)
+mpcal_cli_test(noise_threshold_nan EXIT 2
+  MATCH "--threshold: must be a number in \\[1, 100\\], got 'nan'"
+  ARGS noise ${_still} --threshold nan)
+mpcal_cli_test(noise_height_nan EXIT 2 MATCH "--height: must be a finite number"
+  ARGS noise ${_still} --latitude 45 --height nan)
