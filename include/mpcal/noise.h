@@ -304,6 +304,8 @@ std::optional<NoiseSegment> ChooseNoiseSegment(const Recording& recording,
 /// The analysis of a recording.
 struct NoiseResult {
   NoiseSegment segment;
+  /// The rate: samples over the span, (n − 1) / (t_last − t_first)
+  /// (NoiseStream); the period its inverse.
   double sample_period_s = 0.0;
   double rate_hz = 0.0;
   double record_s = 0.0;    ///< duration analysed
@@ -428,7 +430,8 @@ class NoiseStream {
 /// stillness). `accel_mps2_per_unit`: the factor from the log's units to
 /// m/s².
 /// \throws mpcal::Error for invalid options, fewer than 9 samples, or a
-///   segment outside the recording.
+///   segment outside the recording; as NoiseStream::Finish (a rate that is
+///   not uniform, an axis that produces no noise).
 NoiseResult AnalyseNoise(const Recording& recording,
                          const NoiseSegment& segment,
                          double accel_mps2_per_unit,
