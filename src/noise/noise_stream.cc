@@ -175,18 +175,27 @@ NoiseResult NoiseStream::Finish(double accel_mps2_per_unit,
     if (tail.step_s < shortest->step_s) shortest = tail;
     if (tail.step_s > longest->step_s) longest = tail;
   }
+  GapCounter gaps = gaps_;  // a copy: Finish counts the steps still held
+  gaps.Finish();
   if (shortest && longest->step_s > (1.0 + kUniformTolerance) * shortest->step_s) {
+    // A gap long enough to break uniformity on its own is named.
+    const bool long_gap =
+        gaps.largest_s() >
+        kUniformTolerance * static_cast<double>(kUniformBlockSteps) * gaps.typical_s();
     throw Error(
         ErrorKind::kTime,
-        fmt::format("{}: the sample rate is not uniform: {:.6g} Hz from t = {:.1f} s, "
-                    "{:.6g} Hz from t = {:.1f} s (the rate changes, or samples were "
-                    "lost); the Allan deviation needs one rate: analyse a stretch "
-                    "of one rate",
+        fmt::format("{}: the sample rate is not uniform: {:.6g} Hz near t = {:.1f} s, "
+                    "{:.6g} Hz near t = {:.1f} s ({}); the Allan deviation needs one "
+                    "rate: analyse a stretch of one rate",
                     source_,
                     1.0 / shortest->step_s,
                     shortest->at_s - first_time_s_,
                     1.0 / longest->step_s,
-                    longest->at_s - first_time_s_));
+                    longest->at_s - first_time_s_,
+                    long_gap ? fmt::format("no samples for {:.3g} s after t = {:.1f} s",
+                                           gaps.largest_s(),
+                                           gaps.largest_at_s() - first_time_s_)
+                             : std::string("the rate changes, or samples were lost")));
   }
   if (const std::vector<AxisSignalFault> faults = Faults(accel_mps2_per_unit);
       !faults.empty()) {
@@ -196,8 +205,6 @@ NoiseResult NoiseStream::Finish(double accel_mps2_per_unit,
   r.segment = segment;
   r.rate_hz = rate_hz;
   r.sample_period_s = 1.0 / rate_hz;
-  GapCounter gaps = gaps_;  // a copy: Finish counts the steps still held
-  gaps.Finish();
   r.gaps = gaps.gaps();
   r.samples = rows_;
   r.record_s = static_cast<double>(r.samples) * r.sample_period_s;

@@ -111,7 +111,7 @@ set_tests_properties(cli.noise_one_record_length PROPERTIES
 # stuck axis, a toggling one, a rate that changes halfway), each refused
 # with one line naming it and no file left behind; and one lost sample.
 set(_make ${CMAKE_CURRENT_SOURCE_DIR}/noise_make_record.sh)
-foreach(_case stuck toggling rate_change one_gap)
+foreach(_case stuck toggling rate_change one_gap long_gap)
   add_test(NAME cli.noise_make_${_case}
     COMMAND ${_make} ${_case} ${_ten} ${CMAKE_CURRENT_BINARY_DIR}/noise_${_case}.csv)
   set_tests_properties(cli.noise_make_${_case} PROPERTIES
@@ -124,7 +124,7 @@ mpcal_cli_test(noise_toggling_axis EXIT 1
   MATCH "mpcal: error: .*: gyroscope x: two values only, 0\\.001 rad/s apart" ABSENT imu.yaml
   ARGS noise ${CMAKE_CURRENT_BINARY_DIR}/noise_toggling.csv --kalibr imu.yaml)
 mpcal_cli_test(noise_rate_change EXIT 1
-  MATCH "mpcal: error: .*: the sample rate is not uniform: 200 Hz from t = [0-9.]+ s, 100 Hz from t = [0-9.]+ s" ABSENT n.json
+  MATCH "mpcal: error: .*: the sample rate is not uniform: 200 Hz near t = [0-9.]+ s, 100 Hz near t = [0-9.]+ s \\(the rate changes" ABSENT n.json
   ARGS noise ${CMAKE_CURRENT_BINARY_DIR}/noise_rate_change.csv --whole --json n.json)
 mpcal_cli_test(noise_one_gap EXIT 0 MATCH "note: 1 gap in time \\(samples lost\\)"
   ARGS noise ${CMAKE_CURRENT_BINARY_DIR}/noise_one_gap.csv)
@@ -132,6 +132,11 @@ set_tests_properties(cli.noise_stuck_axis PROPERTIES FIXTURES_REQUIRED noise_stu
 set_tests_properties(cli.noise_toggling_axis PROPERTIES FIXTURES_REQUIRED noise_toggling)
 set_tests_properties(cli.noise_rate_change PROPERTIES FIXTURES_REQUIRED noise_rate_change)
 set_tests_properties(cli.noise_one_gap PROPERTIES FIXTURES_REQUIRED noise_one_gap)
+# Detection does not split a still record at a gap: the whole is refused.
+mpcal_cli_test(noise_long_gap EXIT 1
+  MATCH "mpcal: error: .*not uniform: .*\\(no samples for 2\\.0[0-9] s after t = 2[0-9.]+ s\\)"
+  ABSENT n.json ARGS noise ${CMAKE_CURRENT_BINARY_DIR}/noise_long_gap.csv --json n.json)
+set_tests_properties(cli.noise_long_gap PROPERTIES FIXTURES_REQUIRED noise_long_gap)
 
 # Raw counts: refused without a scale; with the calibration that made them
 # (simulate static's truth, an IMU file in counts), SI figures. The truth is
