@@ -188,3 +188,8 @@ mpcal_cli_test(noise_threshold_nan EXIT 2
   ARGS noise ${_still} --threshold nan)
 mpcal_cli_test(noise_height_nan EXIT 2 MATCH "--height: must be a finite number"
   ARGS noise ${_still} --latitude 45 --height nan)
+# A topic with a newline stays one quoted value: one update_rate in the file.
+add_test(NAME cli.noise_kalibr_hostile_topic
+  COMMAND sh -c "'$<TARGET_FILE:mpcal_cli>' noise '${_still}' --kalibr hostile.yaml --rostopic \"$(printf '/imu0\\nupdate_rate: 1 # x')\" >/dev/null 2>&1 && test $(grep -c '^update_rate' hostile.yaml) -eq 1 && grep -q '^rostopic: \"/imu0\\\\nupdate_rate: 1 # x\"$' hostile.yaml")
+set_tests_properties(cli.noise_kalibr_hostile_topic PROPERTIES
+  LABELS cli WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
