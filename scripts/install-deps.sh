@@ -19,6 +19,7 @@ demo=(
   nlohmann-json3-dev   # calibration and result files
   libfmt-dev           # tables and messages
   libfast-float-dev    # parsing numbers from logs
+  libyaml-cpp-dev      # Kalibr's imu.yaml (written by the noise analysis)
 )
 # The Debian package (cmake/MpcalPackage.cmake).
 package=(

@@ -31,6 +31,24 @@ CLI::Validator NumberAtLeast(bool allow_zero) {
 
 const CLI::Validator PositiveNumber = NumberAtLeast(false);
 const CLI::Validator NonNegativeNumber = NumberAtLeast(true);
+
+CLI::Validator NumberIn(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        double v = 0.0;
+        if (CLI::detail::lexical_cast(text, v) && v >= lo && v <= hi) return "";
+        return fmt::format("must be a number in [{}, {}], got '{}'", lo, hi, text);
+      },
+      fmt::format("FLOAT in [{} - {}]", lo, hi));
+}
+
+const CLI::Validator FiniteNumber(
+    [](std::string& text) -> std::string {
+      double v = 0.0;
+      if (CLI::detail::lexical_cast(text, v) && std::isfinite(v)) return "";
+      return fmt::format("must be a finite number, got '{}'", text);
+    },
+    "FLOAT");
 const CLI::Validator OutputPath(
     [](const std::string& text) -> std::string {
       return text.empty()
@@ -46,7 +64,7 @@ const CLI::Validator InputPath(
     },
     "PATH");
 
-void AddLogOptions(CLI::App& app, LogOptions& options) {
+void AddLogOptions(CLI::App& app, LogOptions& options, const CountsHelp& counts) {
   const std::vector<std::pair<std::string, AccelUnits>> units{
       {"mps2", AccelUnits::kMps2},
       {"g", AccelUnits::kG},
@@ -65,8 +83,9 @@ void AddLogOptions(CLI::App& app, LogOptions& options) {
       ->group("Input log");
   app.add_option(std::string(FlagName(Option::kLogUnits)),
                  options.units,
-                 "Accelerometer units in the log: mps2, g (9.80665 m/s2) or counts "
-                 "(raw ADC; offset and scale found from the positions)")
+                 fmt::format("Accelerometer units in the log: mps2, g (9.80665 m/s2) or "
+                             "counts ({})",
+                             counts.accel))
       ->transform(OneOf(units))
       ->default_str("mps2")
       ->group("Input log");
@@ -93,9 +112,9 @@ void AddLogOptions(CLI::App& app, LogOptions& options) {
            options.gyro_in_dps = unit == "dps";
            options.gyro_in_counts = unit == "counts";
          },
-         "Units of the gyroscope columns: rads (rad/s, the default), dps (deg/s) or "
-         "counts "
-         "(raw ADC; zero measured at every position, scale found from the turns)")
+         fmt::format("Units of the gyroscope columns: rads (rad/s, the default), dps "
+                     "(deg/s) or counts ({})",
+                     counts.gyro))
       ->transform(OneOf(gyro_units))
       ->default_str("rads")
       ->group("Input log");
@@ -112,59 +131,57 @@ void AddGravityOptions(CLI::App& app, GravityFlags& flags) {
                            flags.gravity_mps2,
                            "Local magnitude of gravity (m/s2); default 9.80665, "
                            "the standard value the paper uses")
-                ->check(CLI::Range(kMinGravityMps2, kMaxGravityMps2))
+                ->check(NumberIn(kMinGravityMps2, kMaxGravityMps2))
                 ->group("Gravity");
   auto* lat = app.add_option(std::string(FlagName(Option::kLatitude)),
                              flags.latitude_deg,
                              "Geodetic latitude of the site (deg): use the WGS84 "
                              "normal gravity there")
-                  ->check(CLI::Range(-90.0, 90.0))
+                  ->check(NumberIn(-90.0, 90.0))
                   ->group("Gravity");
   app.add_option(std::string(FlagName(Option::kHeight)),
                  flags.height_m,
                  "Ellipsoidal height of the site (m), with --latitude")
+      ->check(FiniteNumber)
       ->needs(lat)
       ->group("Gravity");
   g->excludes(lat);
 }
 
-namespace {
-
-// The still test's flags (DetectOptions).
-void AddDetectOptions(CLI::App& app, CalibrateOptions& options) {
+void AddDetectOptions(CLI::App& app, DetectOptions& detect) {
   app.add_option(std::string(FlagName(Option::kDetectWindow)),
-                 options.detect.window_s,
+                 detect.window_s,
                  "Static detection: moving window of the motion statistic (s)")
       ->capture_default_str()
       ->check(PositiveNumber)
       ->group("Static detection");
   app.add_option(std::string(FlagName(Option::kDetectMinStatic)),
-                 options.detect.min_static_s,
+                 detect.min_static_s,
                  "Static detection: shortest still position kept (s)")
       ->capture_default_str()
       ->check(PositiveNumber)
       ->group("Static detection");
   app.add_option(std::string(FlagName(Option::kDetectSettle)),
-                 options.detect.settle_s,
+                 detect.settle_s,
                  "Static detection: trimmed from each end of a position (s)")
       ->capture_default_str()
       ->check(NonNegativeNumber)
       ->group("Static detection");
   app.add_option(std::string(FlagName(Option::kDetectThreshold)),
-                 options.detect.threshold_factor,
+                 detect.threshold_factor,
                  "Static detection: threshold as a multiple of the quiet level")
       ->capture_default_str()
-      ->check(CLI::Range(1.0, 100.0))
+      ->check(NumberIn(1.0, 100.0))
       ->group("Static detection");
   app.add_option(std::string(FlagName(Option::kDetectMaxStill)),
-                 options.detect.max_still_g,
+                 detect.max_still_g,
                  "Static detection: nothing moving more than this (g) is still, whatever "
                  "the quiet level; 0 = no cap")
       ->capture_default_str()
       ->check(NonNegativeNumber)
       ->group("Static detection");
   app.add_option(std::string(FlagName(Option::kDetectMergeGap)),
-                 options.detect.merge_gap_s,
+                 detect.merge_gap_s,
                  "Static detection: merge two positions at the same orientation across a "
                  "bump shorter than this (s)")
       ->capture_default_str()
@@ -172,7 +189,7 @@ void AddDetectOptions(CLI::App& app, CalibrateOptions& options) {
       ->group("Static detection");
   app.add_option_function<double>(
          std::string(FlagName(Option::kSensorRange)),
-         [&options](double g) { options.detect.range_mps2 = g * kStandardGravityMps2; },
+         [&detect](double g) { detect.range_mps2 = g * kStandardGravityMps2; },
          "Static detection: measuring range of the sensor (g, e.g. 2 for ±2 g); "
          "positions "
          "with readings at the limit are dropped with a warning. Default: the limit is "
@@ -180,14 +197,12 @@ void AddDetectOptions(CLI::App& app, CalibrateOptions& options) {
       ->check(PositiveNumber)
       ->group("Static detection");
   app.add_option(std::string(FlagName(Option::kDetectMergeAngle)),
-                 options.detect.merge_angle_deg,
+                 detect.merge_angle_deg,
                  "Static detection: ... and closer than this in orientation (deg)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 180.0))
+      ->check(NumberIn(0.0, 180.0))
       ->group("Static detection");
 }
-
-}  // namespace
 
 void AddCalibrateOptions(CLI::App& app, CalibrateOptions& options) {
   const std::vector<std::pair<std::string, ModelKind>> models{
@@ -219,7 +234,7 @@ void AddCalibrateOptions(CLI::App& app, CalibrateOptions& options) {
       ->transform(OneOf(losses))
       ->default_str("none")
       ->group("Estimation");
-  AddDetectOptions(app, options);
+  AddDetectOptions(app, options.detect);
 }
 
 void ThrowIfInvalid(const std::string& problem, const std::string& what) {

@@ -16,8 +16,22 @@
 
 namespace mpcal::cli {
 
+/// What `counts` means to a subcommand, in the help of --units and
+/// --gyro-units.
+struct CountsHelp {
+  const char* accel;
+  const char* gyro;
+};
+/// Calibrate's (and the commands that read its sessions'): scales found from
+/// the positions and the turns.
+inline constexpr CountsHelp kCalibrateCounts{
+    "raw ADC; offset and scale found from the positions",
+    "raw ADC; zero measured at every position, scale found from the turns"};
+
 /// --columns, --units, --time-unit, --rate, --gyro-units.
-void AddLogOptions(CLI::App& app, LogOptions& options);
+void AddLogOptions(CLI::App& app,
+                   LogOptions& options,
+                   const CountsHelp& counts = kCalibrateCounts);
 
 /// --gravity | --latitude [--height]: the local magnitude of gravity.
 struct GravityFlags {
@@ -30,7 +44,12 @@ struct GravityFlags {
 };
 void AddGravityOptions(CLI::App& app, GravityFlags& flags);
 
-/// --model, --robust, detection tuning (--window, --min-static, ...).
+/// Static detection's tuning (--window, --min-static, ...): every command
+/// that finds still positions.
+void AddDetectOptions(CLI::App& app, DetectOptions& options);
+
+/// Estimation (--counts-per-g, --model, --robust) and detection
+/// (AddDetectOptions): the commands that calibrate.
 void AddCalibrateOptions(CLI::App& app, CalibrateOptions& options);
 
 /// Checks for numeric flags: a finite number > 0 (>= 0). CLI11's own
@@ -39,6 +58,13 @@ void AddCalibrateOptions(CLI::App& app, CalibrateOptions& options);
 /// positive number, got -1").
 extern const CLI::Validator PositiveNumber;
 extern const CLI::Validator NonNegativeNumber;
+/// A number in [lo, hi]. CLI::Range lets NaN through (every comparison with
+/// it is false), and the value then fails later as an error of the run
+/// rather than of the flag; this check refuses it ("--confidence: must be a
+/// number in [0.5, 0.999], got 'nan'").
+CLI::Validator NumberIn(double lo, double hi);
+/// Any finite number (not nan, not inf).
+extern const CLI::Validator FiniteNumber;
 
 /// Check for an output file name: not empty (`-o ''` is a slip, not a
 /// request to write nothing).

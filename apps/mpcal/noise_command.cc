@@ -14,9 +14,12 @@
 
 #include "cli_options.h"
 #include "command.h"
+#include "explain.h"
 #include "explain_detect.h"
+#include "mpcal/apply.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
+#include "mpcal/calibration_file.h"
 #include "mpcal/detect.h"
 #include "mpcal/error.h"
 #include "mpcal/log_reader.h"
@@ -32,13 +35,22 @@ struct NoiseFlags {
   std::string input;
   std::string json;
   std::string kalibr;
+  std::string calib;
   std::string rostopic = "/imu0";
   bool whole = false;
   LogOptions log;
   GravityFlags gravity;
-  CalibrateOptions calibrate;  // for the detection flags
+  DetectOptions detect;
   NoiseOptions noise;
+  // Given on the command line (else a calibration's units are taken).
+  bool units_given = false;
+  bool gyro_units_given = false;
 };
+
+// "1 sample", "2 samples".
+std::string Count(std::size_t n, const char* noun) {
+  return fmt::format("{} {}{}", n, noun, n == 1 ? "" : "s");
+}
 
 constexpr NoiseTerm kTableTerms[] = {NoiseTerm::kQuantisation,
                                      NoiseTerm::kWhiteNoise,
@@ -60,11 +72,6 @@ const char* TermLabel(NoiseTerm t, bool gyro) {
       return "rate ramp R";
   }
   return "";
-}
-
-std::string Hours(double s) {
-  return s >= 3600.0 ? fmt::format("{:.1f} h", s / 3600.0)
-                     : fmt::format("{:.0f} min", s / 60.0);
 }
 
 std::string SiCell(const TermEstimate& e) {
@@ -109,18 +116,14 @@ void PrintFindings(const SensorNoise& s, bool gyro, const NoiseResult& r) {
   for (const NoiseTerm t :
        {NoiseTerm::kWhiteNoise, NoiseTerm::kBiasInstability, NoiseTerm::kRandomWalk}) {
     std::vector<std::string> not_seen, masked;
-    double needed = 0.0, needed_half = 0.0;
     for (int i = 0; i < 3; ++i) {
       const TermEstimate& e = s.axes[i].term(t);
       const std::string axis(1, static_cast<char>('x' + i));
       if (e.status == TermStatus::kMasked) masked.push_back(axis);
-      if (e.status == TermStatus::kNotSeen) {
-        not_seen.push_back(axis);
-        if (e.record_needed_s) needed = std::max(needed, *e.record_needed_s);
-        if (e.record_needed_half_s)
-          needed_half = std::max(needed_half, *e.record_needed_half_s);
-      }
+      if (e.status == TermStatus::kNotSeen) not_seen.push_back(axis);
     }
+    const std::optional<double> needed = s.record_needed_s[static_cast<int>(t)];
+    const std::optional<double> needed_half = s.record_needed_half_s[static_cast<int>(t)];
     const std::string name = TermLabel(t, gyro);
     if (!not_seen.empty()) {
       fmt::print(
@@ -129,13 +132,13 @@ void PrintFindings(const SensorNoise& s, bool gyro, const NoiseResult& r) {
           sensor,
           name,
           fmt::join(not_seen, ", "),
-          Hours(r.record_s));
-      if (needed > 0.0) {
+          FormatRecordLength(r.record_s));
+      if (needed) {
         fmt::print(
             " To measure it, record at least {} (if it is as large as the bound; "
             "{} if half of it).",
-            Hours(needed),
-            needed_half > 0.0 ? Hours(needed_half) : std::string("longer"));
+            FormatRecordLength(*needed),
+            needed_half ? FormatRecordLength(*needed_half) : std::string("longer"));
       }
       fmt::print("\n");
     }
@@ -182,7 +185,7 @@ std::string WhyNotStill(const StillVerdict& v) {
 // The analysis of a held recording whose stream found motion: detection's
 // longest still part (or its whole, when detection finds no motion).
 void AnalyseDetected(const NoiseFlags& f, const Recording& rec, Analysis* a) {
-  const DetectResult det = DetectStatic(rec, f.calibrate.detect);
+  const DetectResult det = DetectStatic(rec, f.detect);
   const std::optional<NoiseSegment> segment = ChooseNoiseSegment(rec, det);
   if (!segment) {
     throw Error(
@@ -213,7 +216,9 @@ bool CanReadTwice(const std::string& input) {
 
 // Reads the log into the stream: a file row by row, holding none of it;
 // standard input whole (it cannot be read again), kept for detection.
+// With a calibration, every row is corrected to SI first.
 std::optional<Recording> ReadInto(NoiseFlags& f,
+                                  const RecordingCorrector* correct,
                                   NoiseStream* stream,
                                   UnitsEvidence* evidence,
                                   Analysis* a) {
@@ -221,7 +226,9 @@ std::optional<Recording> ReadInto(NoiseFlags& f,
   f.log.progress = progress.Callback();
   std::optional<Recording> held;
   if (CanReadTwice(f.input)) {
-    const LogStreamSummary s = ReadLogRows(f.input, f.log, [&](const Recording& rows) {
+    const LogStreamSummary s = ReadLogRows(f.input, f.log, [&](const Recording& read) {
+      const Recording corrected = correct ? (*correct)(read) : Recording{};
+      const Recording& rows = correct ? corrected : read;
       evidence->Add(rows, 0, rows.size());
       stream->Add(rows);
     });
@@ -230,6 +237,7 @@ std::optional<Recording> ReadInto(NoiseFlags& f,
     a->warnings = s.warnings;
   } else {
     held = ReadLog(f.input, f.log);
+    if (correct) held = (*correct)(*held);
     *evidence = UnitsEvidence::Of(*held);
     stream->Add(*held);
     a->rows = held->size();
@@ -245,11 +253,12 @@ std::optional<Recording> ReadInto(NoiseFlags& f,
 // Reads and analyses: the whole record from the stream when the sensor never
 // moved (or with --whole); else detection's longest still part, from the
 // log read again.
-Analysis Analyse(NoiseFlags& f) {
+Analysis Analyse(NoiseFlags& f, const RecordingCorrector* correct) {
   Analysis a;
-  NoiseStream stream(f.noise, f.whole ? nullptr : &f.calibrate.detect, f.log.units);
+  const AccelUnits units = correct ? AccelUnits::kMps2 : f.log.units;
+  NoiseStream stream(f.noise, f.whole ? nullptr : &f.detect, units);
   UnitsEvidence evidence;
-  std::optional<Recording> held = ReadInto(f, &stream, &evidence, &a);
+  std::optional<Recording> held = ReadInto(f, correct, &stream, &evidence, &a);
   WithDetectWords([&] { CheckUnits(evidence, f.gravity.Resolve()); });
   if (!f.kalibr.empty() && !a.has_gyro) {
     throw Error(f.input +
@@ -259,7 +268,7 @@ Analysis Analyse(NoiseFlags& f) {
   const std::optional<StillVerdict> still = stream.Stillness();
   if (!still || still->still) {
     const NoiseSegment whole{NoiseSegmentKind::kWholeRecord, 0, stream.rows(), 1};
-    a.result = stream.Finish(*FixedMps2PerUnit(f.log.units), whole);
+    a.result = stream.Finish(*FixedMps2PerUnit(units), whole);
     a.which = still ? "the whole record (detection found the sensor still throughout)"
                     : "the whole record (--whole: detection not run)";
     return a;
@@ -271,6 +280,7 @@ Analysis Analyse(NoiseFlags& f) {
     TerminalProgress progress("reading " + f.input + " again");
     f.log.progress = progress.Callback();
     held = ReadLog(f.input, f.log);
+    if (correct) held = (*correct)(*held);
     progress.Done();
   }
   AnalyseDetected(f, *held, &a);
@@ -278,21 +288,34 @@ Analysis Analyse(NoiseFlags& f) {
 }
 
 // The JSON and Kalibr files asked for, and a warning for each Kalibr value
-// that is a bound rather than a measurement.
+// that is a bound rather than a measurement. Both texts are made before
+// either is written, and a file written is removed again when the next one
+// fails, so that a failing command leaves no file behind.
 void WriteFiles(const NoiseFlags& f, const NoiseResult& r) {
-  if (!f.json.empty()) {
-    WriteFileAtomically(f.json, NoiseJson(r, f.input, f.noise.allan.confidence));
-    fmt::print("wrote {}\n", f.json);
+  const std::string json =
+      f.json.empty() ? "" : NoiseJson(r, f.input, f.noise.allan.confidence);
+  const std::optional<KalibrFile> k =
+      f.kalibr.empty() ? std::nullopt
+                       : std::optional<KalibrFile>(KalibrYaml(r, f.input, f.rostopic));
+  std::error_code ec;
+  const bool json_existed = !f.json.empty() && std::filesystem::exists(f.json, ec);
+  if (!f.json.empty()) WriteFileAtomically(f.json, json);
+  if (k) {
+    try {
+      WriteFileAtomically(f.kalibr, k->text);
+    } catch (const Error&) {
+      if (!f.json.empty() && !json_existed) std::filesystem::remove(f.json, ec);
+      throw;
+    }
   }
-  if (f.kalibr.empty()) return;
-  const KalibrFile k = KalibrYaml(r, f.input, f.rostopic);
-  WriteFileAtomically(f.kalibr, k.text);
+  if (!f.json.empty()) fmt::print("wrote {}\n", f.json);
+  if (!k) return;
   std::fflush(stdout);  // the warnings after the table, also when piped
   for (const auto& [name, v] :
-       {std::pair{"accelerometer_random_walk", k.accel_random_walk},
-        std::pair{"gyroscope_random_walk", k.gyro_random_walk},
-        std::pair{"accelerometer_noise_density", k.accel_noise_density},
-        std::pair{"gyroscope_noise_density", k.gyro_noise_density}}) {
+       {std::pair{"accelerometer_random_walk", k->accel_random_walk},
+        std::pair{"gyroscope_random_walk", k->gyro_random_walk},
+        std::pair{"accelerometer_noise_density", k->accel_noise_density},
+        std::pair{"gyroscope_noise_density", k->gyro_noise_density}}) {
     if (!v.upper_bound) continue;
     fmt::print(stderr,
                "mpcal: warning: {}: {} was not measured; the file has its upper bound "
@@ -301,37 +324,68 @@ void WriteFiles(const NoiseFlags& f, const NoiseResult& r) {
                name,
                v.value,
                v.record_needed_s ? fmt::format("; record at least {} to measure it",
-                                               Hours(*v.record_needed_s))
+                                               FormatRecordLength(*v.record_needed_s))
                                  : "");
   }
   fmt::print("wrote {} (Kalibr IMU model: the largest axis of each sensor)\n", f.kalibr);
 }
 
+// The calibration of --calib, when given: the log's units default to its
+// own. Without one, readings must be in physical units: counts have no
+// scale.
+std::optional<RecordingCorrector> MakeCorrector(NoiseFlags& f) {
+  if (f.calib.empty()) {
+    if (f.log.units == AccelUnits::kCounts) {
+      throw Error(
+          "noise needs the readings in physical units: give --units mps2 or g, or "
+          "--calib with the sensor's calibration to turn its counts into m/s2");
+    }
+    if (f.log.gyro_in_counts) {
+      throw Error(
+          "noise needs the gyroscope in physical units: give --gyro-units rads or dps, "
+          "or --calib with the IMU's calibration (mpcal.imu/1) to turn its counts "
+          "into rad/s");
+    }
+    return std::nullopt;
+  }
+  const Calibration calibration = ReadCalibrationFile(f.calib);
+  if (!f.units_given) f.log.units = calibration.input_units;
+  if (calibration.gyroscope && !f.gyro_units_given) {
+    f.log.gyro_in_counts = calibration.gyroscope->input_units == GyroUnits::kCounts;
+    f.log.gyro_in_dps = calibration.gyroscope->input_units == GyroUnits::kDps;
+  }
+  // A gyroscope read in deg/s is in rad/s once read.
+  return RecordingCorrector(
+      calibration,
+      f.log.units,
+      f.log.gyro_in_counts ? GyroUnits::kCounts : GyroUnits::kRadps);
+}
+
 void Run(NoiseFlags& f) {
   ThrowIfInvalid(f.noise.Validate(), "noise");
-  ThrowIfInvalid(f.calibrate.detect.Validate(), "noise");
-  if (!f.json.empty()) CheckOutput(f.json, {f.input});
-  if (!f.kalibr.empty()) CheckOutput(f.kalibr, {f.input, f.json});
-  if (f.log.units == AccelUnits::kCounts) {
-    throw Error(
-        "noise needs the readings in physical units: give --units mps2 or g (in "
-        "counts, calibrate first and convert with 'mpcal apply')");
-  }
+  ThrowIfInvalid(f.detect.Validate(), "noise");
+  if (!f.json.empty()) CheckOutput(f.json, {f.input, f.calib});
+  if (!f.kalibr.empty()) CheckOutput(f.kalibr, {f.input, f.calib, f.json});
+  const std::optional<RecordingCorrector> correct = MakeCorrector(f);
 
-  const Analysis a = Analyse(f);
+  const Analysis a = Analyse(f, correct ? &*correct : nullptr);
   const NoiseResult& r = a.result;
   for (const auto& w : a.warnings) fmt::print("  note: {}\n", w);
-  fmt::print("{}: {} rows, {:.2f} h at {:.6g} Hz{}\n",
+  fmt::print("{}: {}, {:.2f} h at {:.6g} Hz{}{}\n",
              f.input,
-             a.rows,
+             Count(a.rows, "row"),
              a.span_s / 3600.0,
              r.rate_hz,
-             a.has_gyro ? ", accelerometer and gyroscope" : ", accelerometer");
-  fmt::print("analysed: {}: {} samples, {}\n", a.which, r.samples, Hours(r.record_s));
+             a.has_gyro ? ", accelerometer and gyroscope" : ", accelerometer",
+             f.calib.empty() ? "" : fmt::format(", corrected by {}", f.calib));
+  fmt::print("analysed: {}: {}, {}\n",
+             a.which,
+             Count(r.samples, "sample"),
+             FormatRecordLength(r.record_s));
   if (r.gaps > 0) {
     fmt::print(
-        "  note: {} gaps in time (samples lost); they are treated as evenly spaced\n",
-        r.gaps);
+        "  note: {} in time (samples lost); the samples are treated as evenly spaced\n",
+        Count(r.gaps, "gap"));
   }
   const std::vector<AllanPoint>& c = r.accel_mps2.axes[0].curve;
   fmt::print(
@@ -364,13 +418,23 @@ void AddNoiseCommand(CLI::App& root) {
       "for "
       "those it does not), JSON and Kalibr's imu.yaml");
   app->add_option("INPUT", f->input, "Log: CSV or text, '-' for standard input")
-      ->required();
-  app->add_option("--json", f->json, "Write the curves and terms (mpcal.noise/1)");
+      ->required()
+      ->check(InputPath);
+  app->add_option("--json", f->json, "Write the curves and terms (mpcal.noise/1)")
+      ->check(OutputPath);
   app->add_option("--kalibr",
                   f->kalibr,
-                  "Write Kalibr's IMU noise file (imu.yaml) from the measured values");
+                  "Write Kalibr's IMU noise file (imu.yaml) from the measured values")
+      ->check(OutputPath);
   app->add_option("--rostopic", f->rostopic, "The rostopic written in the Kalibr file")
       ->capture_default_str();
+  app->add_option("--calib",
+                  f->calib,
+                  "Correct every row by this calibration first (mpcal.accelerometer/1, "
+                  "or mpcal.imu/1 for the gyroscope too): a log of raw counts gives SI "
+                  "figures. The log is read in the calibration's units unless --units "
+                  "/ --gyro-units say otherwise")
+      ->check(InputPath);
   app->add_flag(
       "--whole",
       f->whole,
@@ -380,24 +444,33 @@ void AddNoiseCommand(CLI::App& root) {
                   f->noise.allan.points_per_octave,
                   "Cluster times per factor of two")
       ->capture_default_str()
-      ->check(CLI::Range(1.0, 64.0))
+      ->check(NumberIn(1.0, 64.0))
       ->group("Allan deviation");
   app->add_option("--confidence",
                   f->noise.allan.confidence,
                   "Confidence level of the intervals (curve and terms)")
       ->capture_default_str()
-      ->check(CLI::Range(0.5, 0.999))
+      ->check(NumberIn(0.5, 0.999))
       ->group("Allan deviation");
-  AddLogOptions(*app, f->log);
+  AddLogOptions(*app,
+                f->log,
+                {"raw ADC; needs --calib to scale them",
+                 "raw ADC; needs --calib with an "
+                 "IMU calibration to scale them"});
   AddGravityOptions(*app, f->gravity);
-  AddCalibrateOptions(*app, f->calibrate);
+  AddDetectOptions(*app, f->detect);
   app->footer(
       "Examples:\n"
       "  mpcal simulate noise --hours 2 --rate 200 -o still.csv --truth truth.json\n"
       "  mpcal noise still.csv --json noise.json --kalibr imu.yaml\n"
       "  mpcal noise imu.csv --columns t=0,ax=1,ay=2,az=3,gx=4,gy=5,gz=6 --units g\n"
+      "  mpcal noise raw.csv --units counts --gyro-units counts --calib imu.json\n"
       "  mpcal report --noise noise.json -o report.html");
-  app->callback([f] { Run(*f); });
+  app->callback([f, app] {
+    f->units_given = app->count(std::string(FlagName(Option::kLogUnits))) > 0;
+    f->gyro_units_given = app->count(std::string(FlagName(Option::kLogGyroUnits))) > 0;
+    Run(*f);
+  });
 }
 
 }  // namespace mpcal::cli

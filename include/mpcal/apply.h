@@ -76,6 +76,30 @@ class GyroCorrector {
   Eigen::Matrix3d g_term_ = Eigen::Matrix3d::Zero();
 };
 
+/// A calibration applied to rows held in memory (a Recording read by
+/// ReadLog or ReadLogRows): the accelerometer readings in the log's units to
+/// m/s² (Corrector), and the gyroscope's to rad/s when the calibration has
+/// one (GyroCorrector, with its g-sensitivity from the corrected specific
+/// force). Logs of raw counts give SI readings this way.
+class RecordingCorrector {
+ public:
+  /// \param log_units, log_gyro_units: the units the rows were read in (a
+  ///   gyroscope read in deg/s is in rad/s once read).
+  /// \throws mpcal::Error as Corrector and GyroCorrector, and (kUnits) for
+  ///   a gyroscope in counts and a calibration without one.
+  RecordingCorrector(const Calibration& calibration,
+                     AccelUnits log_units,
+                     GyroUnits log_gyro_units);
+  /// The rows corrected: units m/s², the gyroscope (if any) in rad/s.
+  Recording operator()(const Recording& rows) const;
+  /// Whether the gyroscope is corrected (the calibration has one).
+  bool corrects_gyro() const { return gyro_.has_value(); }
+
+ private:
+  Corrector accel_;
+  std::optional<GyroCorrector> gyro_;
+};
+
 struct ApplyOptions {
   /// How to read the input log (columns, delimiters, units, time unit). Its
   /// `units` must match the calibration (CheckCalibrationApplies).

@@ -58,7 +58,6 @@
 #include "mpcal/detect.h"
 #include "mpcal/gap_counter.h"
 #include "mpcal/recording.h"
-#include "mpcal/systematic_sample.h"
 
 namespace mpcal {
 
@@ -130,6 +129,16 @@ class AllanSums {
   std::size_t samples() const { return samples_; }
   /// Their mean, in their unit.
   Eigen::Vector3d Mean() const;
+  /// What the values of one axis (0, 1, 2) look like, in their unit: how a
+  /// sensor that is not producing noise shows.
+  struct AxisValues {
+    int distinct = 0;         ///< distinct values, counted up to 3 (3: three or more)
+    double first = 0.0;       ///< the first value
+    double resolution = 0.0;  ///< smallest non-zero change between consecutive
+                              ///< samples (0: none changed)
+    double adev_tau0 = 0.0;   ///< Allan deviation at one sample period
+  };
+  AxisValues Values(int axis) const;
   /// The Allan variance of each axis at the log-spaced cluster times of the
   /// samples added (AllanOptions), scaled to SI by `si_per_unit`, τ = m ×
   /// `sample_period_s` (EDF and intervals still at their white-noise
@@ -146,9 +155,14 @@ class AllanSums {
     std::array<long double, 3> total{};
   };
   void SumNear();
+  void TrackValues(const Eigen::Vector3d* samples, std::size_t count);
 
   AllanOptions options_;
   std::size_t samples_ = 0;
+  std::array<int, 3> distinct_{};
+  std::array<std::array<double, 2>, 3> values_{};  // the first two distinct values
+  Eigen::Vector3d previous_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d resolution_ = Eigen::Vector3d::Zero();  // 0: no change yet
   Eigen::Vector3d first_ = Eigen::Vector3d::Zero();
   std::array<long double, 3> run_{};  // θ of the last sample added
   std::vector<Near> near_;
@@ -243,7 +257,21 @@ struct SensorNoise {
   std::array<AxisNoise, 3> axes;
   /// Mean removed per axis (u): the bias over the record.
   Eigen::Vector3d mean_si = Eigen::Vector3d::Zero();
+  /// Per term (index: NoiseTerm), how long to record to measure it: the
+  /// longest TermEstimate::record_needed_s (and record_needed_half_s) of the
+  /// axes where it was not seen, so that a record of that length shows it on
+  /// every one of them; unset when none of them has one. The one figure of
+  /// "how long must I record" (SetRecordNeeded).
+  std::array<std::optional<double>, kNoiseTermCount> record_needed_s{};
+  std::array<std::optional<double>, kNoiseTermCount> record_needed_half_s{};
 };
+
+/// Sets `sensor.record_needed_s` and `record_needed_half_s` from its axes.
+void SetRecordNeeded(SensorNoise& sensor);
+
+/// A record length in words: "40 s", "46 min", "2.3 h" (the one format of
+/// record lengths in tables, warnings and file comments).
+std::string FormatRecordLength(double seconds);
 
 /// Allan curves and terms of a sensor from its sums (AllanSums::Curves
 /// with the same `si_per_unit` and `sample_period_s`).
@@ -276,6 +304,8 @@ std::optional<NoiseSegment> ChooseNoiseSegment(const Recording& recording,
 /// The analysis of a recording.
 struct NoiseResult {
   NoiseSegment segment;
+  /// The rate: samples over the span, (n − 1) / (t_last − t_first)
+  /// (NoiseStream); the period its inverse.
   double sample_period_s = 0.0;
   double rate_hz = 0.0;
   double record_s = 0.0;    ///< duration analysed
@@ -288,17 +318,60 @@ struct NoiseResult {
   std::optional<SensorNoise> gyro_radps;
 };
 
+/// How an axis shows that its sensor is not producing noise: an Allan
+/// deviation of it would measure the logger or the quantiser, not the sensor.
+enum class SignalFault {
+  kStuck,            ///< one value throughout (stuck, or clipped at a limit)
+  kTwoValued,        ///< two values only (a toggling bit)
+  kBelowResolution,  ///< its scatter from sample to sample (the Allan
+                     ///< deviation at τ0) is below its resolution (the
+                     ///< smallest change): the quantiser, not the noise
+};
+/// "stuck", "two_valued", "below_resolution".
+std::string_view ToString(SignalFault fault);
+
+/// One axis that is not producing noise, with the figures that say so (in
+/// the sensor's SI unit: m/s² or rad/s).
+struct AxisSignalFault {
+  bool gyroscope = false;
+  int axis = 0;  ///< 0, 1, 2: x, y, z
+  SignalFault fault = SignalFault::kStuck;
+  double value_si = 0.0;       ///< its first value (stuck: the value)
+  double resolution_si = 0.0;  ///< the smallest change between samples
+  double adev_tau0_si = 0.0;   ///< the Allan deviation at one sample period
+};
+
+/// The axes of a sensor that are not producing noise, from its sums (empty
+/// when all three are). `si_per_unit`: the factor to the SI unit.
+std::vector<AxisSignalFault> SignalFaults(const AllanSums& sums,
+                                          double si_per_unit,
+                                          bool gyroscope);
+
 /// The noise of a record analysed as its rows arrive (in time order, split
 /// anyhow), none of them held: the Allan sums of both sensors (AllanSums),
-/// the sample period and the gaps, and, when asked, whether the sensor
-/// stayed still throughout by detection's rule (StillnessMonitor). Memory:
-/// a few MB for a record of any length.
+/// the sample rate and the gaps, and, when asked, whether the sensor stayed
+/// still throughout by detection's rule (StillnessMonitor). Memory: a few
+/// MB for a record of any length.
 ///
-/// The sample period τ0 is the median of a systematic sample of the time
-/// steps (SystematicSample); a gap is a step longer than 1.5 times the
-/// median of the first 1,024 steps (known before the record ends).
+/// The sample rate is the count of samples over the span, (n − 1) /
+/// (t_last − t_first): a clock of coarse resolution (a millisecond clock at
+/// 300 Hz steps 3, 3, 4 ms) and time stamps too large for a double to
+/// resolve one step (1e11 s) both give the rate the logger ran at, which
+/// the median of the steps does not. The rate must be the same throughout: the mean
+/// step of every block of kUniformBlockSteps steps (and of the last, shorter
+/// one when it has a quarter of that) lies within kUniformTolerance of every
+/// other; a change of rate or a large gap (more than about 50 samples lost
+/// at once) is refused, as the Allan deviation assumes one sample period. A
+/// gap is a step longer than 1.5 times the median of the first 1,024 steps
+/// (known before the record ends); a few short gaps are counted, and the
+/// samples treated as evenly spaced.
 class NoiseStream {
  public:
+  /// Steps per block of the uniformity test.
+  static constexpr std::size_t kUniformBlockSteps = 1024;
+  /// Largest spread of the blocks' mean steps, as a fraction of the smallest.
+  static constexpr double kUniformTolerance = 0.05;
+
   /// `stillness`: judge stillness with these detection options (nullptr:
   /// not judged). `accel_units`: the accelerometer's units (for the range
   /// limits of the stillness judgement).
@@ -310,22 +383,33 @@ class NoiseStream {
   NoiseStream& operator=(const NoiseStream&) = delete;
 
   /// Adds rows [begin, end) of `rows` (its gyroscope empty, or one reading
-  /// per row, the same in every call). Large blocks run the gyroscope's
-  /// sums on a second thread.
+  /// per row, the same in every call; times strictly increasing). Large
+  /// blocks run the gyroscope's sums on a second thread.
   void Add(const Recording& rows, std::size_t begin, std::size_t end);
   void Add(const Recording& rows) { Add(rows, 0, rows.size()); }
   std::size_t rows() const { return rows_; }
   bool has_gyro() const { return has_gyro_; }
   /// Unset when stillness is not judged.
   std::optional<StillVerdict> Stillness() const;
+  /// The axes of both sensors that are not producing noise (SignalFaults).
+  std::vector<AxisSignalFault> Faults(double accel_mps2_per_unit) const;
   /// The analysis of the rows added, as `segment` of the recording.
   /// `accel_mps2_per_unit`: the factor from the log's units to m/s².
-  /// \throws mpcal::Error for fewer than 9 rows, no time step, or invalid
-  ///   options.
+  /// \throws mpcal::Error for fewer than 9 rows; (kTime) for a span that is
+  ///   not a positive time, a rate above kMaxSampleRateHz, or a rate that
+  ///   is not uniform (see the class comment), naming the rates and where;
+  ///   for an axis that is not producing noise (Faults), naming each; or
+  ///   invalid options.
   NoiseResult Finish(double accel_mps2_per_unit, const NoiseSegment& segment) const;
 
  private:
+  // The mean step of a block of steps and the time it began.
+  struct BlockStep {
+    double step_s = 0.0;
+    double at_s = 0.0;
+  };
   void AddSteps(const std::vector<double>& t, std::size_t begin, std::size_t end);
+  void NoteBlock(double step_s, double at_s);
 
   NoiseOptions options_;
   std::string source_;
@@ -334,8 +418,11 @@ class NoiseStream {
   AllanSums accel_;
   AllanSums gyro_;
   std::unique_ptr<StillnessMonitor> stillness_;
-  SystematicSample steps_;
+  double first_time_s_ = 0.0;
   double last_time_s_ = 0.0;
+  double block_begin_s_ = 0.0;  // the time the current block began
+  std::size_t block_steps_ = 0;
+  std::optional<BlockStep> shortest_, longest_;  // of the full blocks
   GapCounter gaps_;
 };
 
@@ -343,7 +430,8 @@ class NoiseStream {
 /// stillness). `accel_mps2_per_unit`: the factor from the log's units to
 /// m/s².
 /// \throws mpcal::Error for invalid options, fewer than 9 samples, or a
-///   segment outside the recording.
+///   segment outside the recording; as NoiseStream::Finish (a rate that is
+///   not uniform, an axis that produces no noise).
 NoiseResult AnalyseNoise(const Recording& recording,
                          const NoiseSegment& segment,
                          double accel_mps2_per_unit,

@@ -10,7 +10,10 @@
 ///                  "static_intervals": 1},
 ///      "rate_hz": 400, "record_s": 28800, "samples": ..., "gaps": 0,
 ///      "confidence": 0.95,
-///      "accelerometer": {"mean_mps2": [..], "axes": {"x": {
+///      "accelerometer": {"mean_mps2": [..],
+///                        "record_needed_s": {"bias_instability": .. or null,
+///                                            "random_walk": .., ...},
+///                        "axes": {"x": {
 ///         "white_noise_mps2_per_rthz": {"status": "measured", "value": ..,
 ///                                       "lo": .., "hi": .., "tau_range_s": [..]},
 ///         "random_walk_mps3_per_rthz": {"status": "not_seen",

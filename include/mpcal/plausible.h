@@ -40,6 +40,10 @@ inline double MaxReading(AccelUnits units) {
 /// logger's clock (Unix time is 1.8e9 s; in ms read as seconds, 1.8e12).
 inline constexpr double kMaxTimeS = 1e12;
 
+/// The highest sample rate of an inertial log: MEMS sensors output at most a
+/// few tens of kHz; a rate beyond 1 MHz is a time column in the wrong unit.
+inline constexpr double kMaxSampleRateHz = 1e6;
+
 /// A calibration's parameters, in SI: a bias beyond 10 g is not an
 /// accelerometer's (consumer parts: below 1 g); a scale-factor error beyond
 /// ±0.5 (50 %) and a non-orthogonality angle of π/4 (45°) or more are not a

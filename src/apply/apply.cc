@@ -155,6 +155,46 @@ GyroCorrector::GyroCorrector(const GyroCalibration& gyro,
   }
 }
 
+namespace {
+
+std::optional<GyroCorrector> MakeRowGyroCorrector(const Calibration& calibration,
+                                                  GyroUnits log_gyro_units) {
+  if (calibration.gyroscope) {
+    return GyroCorrector(*calibration.gyroscope, log_gyro_units, GyroUnits::kRadps);
+  }
+  if (log_gyro_units == GyroUnits::kCounts) {
+    Advice advice;
+    advice.settings = {{Option::kLogGyroUnits, ""}};
+    throw Error(ErrorKind::kUnits,
+                "the gyroscope is read as raw counts but the calibration has no "
+                "gyroscope to scale them: use an IMU calibration (mpcal.imu/1), or "
+                "read the gyroscope in its physical units",
+                advice);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+RecordingCorrector::RecordingCorrector(const Calibration& calibration,
+                                       AccelUnits log_units,
+                                       GyroUnits log_gyro_units)
+    : accel_(calibration, log_units, AccelUnits::kMps2),
+      gyro_(MakeRowGyroCorrector(calibration, log_gyro_units)) {}
+
+Recording RecordingCorrector::operator()(const Recording& rows) const {
+  Recording out = rows;
+  for (Eigen::Vector3d& a : out.accel) a = accel_(a);
+  out.units = AccelUnits::kMps2;
+  if (gyro_ && out.gyro_radps.size() == out.accel.size()) {
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      out.gyro_radps[i] = (*gyro_)(out.gyro_radps[i], out.accel[i]);
+    }
+    out.gyro_units = GyroUnits::kRadps;
+  }
+  return out;
+}
+
 std::string ApplyOptions::Validate() const {
   const std::string log_problem = log.Validate();
   if (!log_problem.empty()) return "log." + log_problem;

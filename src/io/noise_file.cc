@@ -2,6 +2,7 @@
 // truth of a simulated still record, and its CSV written row by row.
 #include "mpcal/noise_file.h"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <string>
 
 #include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
 #include <nlohmann/json.hpp>
 
 #include "io/json_reader.h"
@@ -93,6 +95,13 @@ json SensorJson(const SensorNoise& s, bool gyro) {
   json axes;
   for (int i = 0; i < 3; ++i) axes[kAxisNames[i]] = AxisJson(s.axes[i], gyro);
   j["axes"] = axes;
+  // How long to record to measure each term not seen (SetRecordNeeded).
+  json needed;
+  for (int t = 0; t < kNoiseTermCount; ++t) {
+    needed[std::string(ToString(static_cast<NoiseTerm>(t)))] =
+        s.record_needed_s[t] ? json(*s.record_needed_s[t]) : json(nullptr);
+  }
+  j["record_needed_s"] = needed;
   return j;
 }
 
@@ -203,6 +212,7 @@ SensorNoise ReadSensor(const JsonReader& r,
                          JsonReader::Join(axes_path, kAxisNames[i]),
                          gyro);
   }
+  SetRecordNeeded(s);
   return s;
 }
 
@@ -218,7 +228,13 @@ KalibrValue Largest(const SensorNoise& s, NoiseTerm term, const char* what) {
     const double v = bound ? e.upper_bound : *e.value;
     if (!(v > 0.0)) continue;
     if (!any || v > best.value) {
-      best = KalibrValue{v, i, bound, bound ? e.record_needed_s : std::nullopt};
+      // The record that shows the term on every axis where it was not seen.
+      best = KalibrValue{v,
+                         i,
+                         bound,
+                         bound && e.record_needed_s
+                             ? s.record_needed_s[static_cast<int>(term)]
+                             : std::nullopt};
       any = true;
     }
   }
@@ -241,8 +257,8 @@ std::string Describe(const KalibrValue& v, const SensorNoise& s, NoiseTerm term)
   if (v.upper_bound) {
     s_out += "; NOT MEASURED: an upper bound from a record too short to show it";
     if (v.record_needed_s) {
-      s_out += fmt::format(", record at least {:.1f} h to measure it",
-                           *v.record_needed_s / 3600);
+      s_out += fmt::format(", record at least {} to measure it",
+                           FormatRecordLength(*v.record_needed_s));
     }
   }
   return s_out;
@@ -332,6 +348,52 @@ NoiseFile ReadNoiseFile(const std::string& path) {
   return ParseNoiseJson(text.str(), origin);
 }
 
+namespace {
+
+// A comment's text cannot break out of its line: newlines become spaces.
+auto YamlComment(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  std::replace(text.begin(), text.end(), '\r', ' ');
+  return YAML::Comment(text);
+}
+
+// The comment lines that open the Kalibr file, one per line.
+void KalibrHeader(YAML::Emitter& y, const NoiseResult& r, const std::string& input) {
+  y << YamlComment(fmt::format("Kalibr IMU noise model, measured by mpcal {} from '{}'",
+                               MPCAL_VERSION,
+                               input))
+    << YAML::Newline
+    << YamlComment(fmt::format("({:.2f} h at {:.6g} Hz, overlapping Allan deviation).",
+                               r.record_s / 3600.0,
+                               r.rate_hz))
+    << YAML::Newline;
+  constexpr const char* kDensities[] = {
+      "Continuous-time densities, as Kalibr defines them: the discrete noise per",
+      "sample is density * sqrt(update_rate), the random-walk step density / "
+      "sqrt(update_rate)."};
+  constexpr const char* kRule[] = {
+      "Rule across axes: the largest of x, y, z (one value per sensor; no axis is",
+      "trusted more than it deserves)."};
+  constexpr const char* kInflate[] = {
+      "Kalibr's wiki advises inflating these for a filter (e.g. x10 the noise "
+      "densities)",
+      "to cover unmodelled effects; these are the measured values, not inflated."};
+  for (const auto* lines : {kDensities, kRule, kInflate}) {
+    for (int i = 0; i < 2; ++i) y << YamlComment(lines[i]) << YAML::Newline;
+  }
+}
+
+// One value of the Kalibr file, and where it came from.
+struct KalibrEntry {
+  const char* key;
+  const KalibrValue* value;
+  const SensorNoise* sensor;
+  NoiseTerm term;
+  const char* unit;
+};
+
+}  // namespace
+
 KalibrFile KalibrYaml(const NoiseResult& r,
                       const std::string& input,
                       const std::string& topic) {
@@ -343,45 +405,50 @@ KalibrFile KalibrYaml(const NoiseResult& r,
   k.accel_random_walk = Largest(a, NoiseTerm::kRandomWalk, "accelerometer random walk");
   k.gyro_noise_density = Largest(g, NoiseTerm::kWhiteNoise, "gyroscope white noise");
   k.gyro_random_walk = Largest(g, NoiseTerm::kRandomWalk, "gyroscope random walk");
-  std::string& y = k.text;
-  y += fmt::format(
-      "# Kalibr IMU noise model, measured by mpcal {} from '{}'\n", MPCAL_VERSION, input);
-  y += fmt::format("# ({:.2f} h at {:.6g} Hz, overlapping Allan deviation).\n",
-                   r.record_s / 3600.0,
-                   r.rate_hz);
-  y += "# Continuous-time densities, as Kalibr defines them: the discrete noise per\n"
-       "# sample is density * sqrt(update_rate), the random-walk step density / "
-       "sqrt(update_rate).\n"
-       "# Rule across axes: the largest of x, y, z (one value per sensor; no axis is\n"
-       "# trusted more than it deserves).\n"
-       "# Kalibr's wiki advises inflating these for a filter (e.g. x10 the noise "
-       "densities)\n"
-       "# to cover unmodelled effects; these are the measured values, not inflated.\n";
-  y += fmt::format("# accelerometer_noise_density {}\n",
-                   Describe(k.accel_noise_density, a, NoiseTerm::kWhiteNoise));
-  y += fmt::format("# accelerometer_random_walk {}\n",
-                   Describe(k.accel_random_walk, a, NoiseTerm::kRandomWalk));
-  y += fmt::format("# gyroscope_noise_density {}\n",
-                   Describe(k.gyro_noise_density, g, NoiseTerm::kWhiteNoise));
-  y += fmt::format("# gyroscope_random_walk {}\n",
-                   Describe(k.gyro_random_walk, g, NoiseTerm::kRandomWalk));
-  const auto bound = [](const KalibrValue& v) {
-    return v.upper_bound ? "  UPPER BOUND, " : "  ";
+  const KalibrEntry entries[] = {
+      {"accelerometer_noise_density",
+       &k.accel_noise_density,
+       &a,
+       NoiseTerm::kWhiteNoise,
+       "m/s^2/sqrt(Hz)"},
+      {"accelerometer_random_walk",
+       &k.accel_random_walk,
+       &a,
+       NoiseTerm::kRandomWalk,
+       "m/s^3/sqrt(Hz)"},
+      {"gyroscope_noise_density",
+       &k.gyro_noise_density,
+       &g,
+       NoiseTerm::kWhiteNoise,
+       "rad/s/sqrt(Hz)"},
+      {"gyroscope_random_walk",
+       &k.gyro_random_walk,
+       &g,
+       NoiseTerm::kRandomWalk,
+       "rad/s^2/sqrt(Hz)"},
   };
-  y += fmt::format("accelerometer_noise_density: {:.6e}  #{}m/s^2/sqrt(Hz)\n",
-                   k.accel_noise_density.value,
-                   bound(k.accel_noise_density));
-  y += fmt::format("accelerometer_random_walk: {:.6e}  #{}m/s^3/sqrt(Hz)\n",
-                   k.accel_random_walk.value,
-                   bound(k.accel_random_walk));
-  y += fmt::format("gyroscope_noise_density: {:.6e}  #{}rad/s/sqrt(Hz)\n",
-                   k.gyro_noise_density.value,
-                   bound(k.gyro_noise_density));
-  y += fmt::format("gyroscope_random_walk: {:.6e}  #{}rad/s^2/sqrt(Hz)\n",
-                   k.gyro_random_walk.value,
-                   bound(k.gyro_random_walk));
-  y += fmt::format("rostopic: {}\n", topic);
-  y += fmt::format("update_rate: {:.6g}  # Hz\n", r.rate_hz);
+  // yaml-cpp quotes and escapes what needs it: a topic with a newline, a '#'
+  // or a ':' stays one value.
+  YAML::Emitter y;
+  KalibrHeader(y, r, input);
+  for (const KalibrEntry& e : entries) {
+    if (&e != &entries[0]) y << YAML::Newline;
+    y << YamlComment(fmt::format("{} {}", e.key, Describe(*e.value, *e.sensor, e.term)));
+  }
+  y << YAML::BeginMap;
+  for (const KalibrEntry& e : entries) {
+    y << YAML::Key << e.key << YAML::Value << fmt::format("{:.6e}", e.value->value)
+      << YamlComment(
+             fmt::format("{}{}", e.value->upper_bound ? "UPPER BOUND, " : "", e.unit));
+  }
+  y << YAML::Key << "rostopic" << YAML::Value << YAML::DoubleQuoted << topic;
+  y << YAML::Key << "update_rate" << YAML::Value << fmt::format("{:.6g}", r.rate_hz)
+    << YamlComment("Hz");
+  y << YAML::EndMap;
+  if (!y.good()) {
+    throw Error("Kalibr's IMU file could not be written: " + y.GetLastError());
+  }
+  k.text = std::string(y.c_str()) + "\n";
   return k;
 }
 

@@ -135,7 +135,48 @@ AllanSums::AllanSums(const AllanOptions& options) : options_(options) {
   far_.assign(3, 0.0);
 }
 
+// Distinct values (up to 3) and the smallest change of each axis: a stuck,
+// toggling or coarsely quantised axis is told from noise by these.
+void AllanSums::TrackValues(const Eigen::Vector3d* samples, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const double v = samples[i][j];
+      if (samples_ + i == 0) {
+        distinct_[j] = 1;
+        values_[j][0] = v;
+      } else {
+        const double change = std::abs(v - previous_[j]);
+        if (change > 0.0 && (resolution_[j] == 0.0 || change < resolution_[j])) {
+          resolution_[j] = change;
+        }
+        if (distinct_[j] < 3 && v != values_[j][0] &&
+            (distinct_[j] < 2 || v != values_[j][1])) {
+          if (distinct_[j] < 2) values_[j][1] = v;
+          ++distinct_[j];
+        }
+      }
+      previous_[j] = v;
+    }
+  }
+}
+
+AllanSums::AxisValues AllanSums::Values(int axis) const {
+  assert(axis >= 0 && axis < 3);
+  AxisValues v;
+  v.distinct = distinct_[axis];
+  v.first = values_[axis][0];
+  v.resolution = resolution_[axis];
+  // The first near cluster size is m = 1: its squared second differences of
+  // θ are the squared steps of the samples.
+  if (!near_.empty() && near_.front().m == 1 && samples_ > 1) {
+    v.adev_tau0 = std::sqrt(static_cast<double>(
+        near_.front().total[axis] / (2.0L * static_cast<long double>(samples_ - 1))));
+  }
+  return v;
+}
+
 void AllanSums::Add(const Eigen::Vector3d* samples, std::size_t count) {
+  TrackValues(samples, count);
   if (count > 0 && samples_ == 0) first_ = samples[0];
   for (std::size_t done = 0; done < count;) {
     const std::size_t block = std::min(kAddBlock, count - done);

@@ -30,6 +30,71 @@ std::string_view ToString(NoiseSegmentKind kind) {
   return "?";
 }
 
+void SetRecordNeeded(SensorNoise& sensor) {
+  for (int t = 0; t < kNoiseTermCount; ++t) {
+    sensor.record_needed_s[t].reset();
+    sensor.record_needed_half_s[t].reset();
+    for (const AxisNoise& a : sensor.axes) {
+      const TermEstimate& e = a.terms[t];
+      if (e.status != TermStatus::kNotSeen) continue;
+      const auto longest = [](std::optional<double>& to, std::optional<double> v) {
+        if (v && (!to || *v > *to)) to = v;
+      };
+      longest(sensor.record_needed_s[t], e.record_needed_s);
+      longest(sensor.record_needed_half_s[t], e.record_needed_half_s);
+    }
+  }
+}
+
+std::string FormatRecordLength(double seconds) {
+  if (seconds >= 3600.0) return fmt::format("{:.1f} h", seconds / 3600.0);
+  if (seconds >= 60.0) return fmt::format("{:.0f} min", seconds / 60.0);
+  return fmt::format("{:.0f} s", seconds);
+}
+
+std::string_view ToString(SignalFault fault) {
+  switch (fault) {
+    case SignalFault::kStuck:
+      return "stuck";
+    case SignalFault::kTwoValued:
+      return "two_valued";
+    case SignalFault::kBelowResolution:
+      return "below_resolution";
+  }
+  return "?";
+}
+
+std::vector<AxisSignalFault> SignalFaults(const AllanSums& sums,
+                                          double si_per_unit,
+                                          bool gyroscope) {
+  std::vector<AxisSignalFault> out;
+  if (sums.samples() < 2) return out;
+  for (int axis = 0; axis < 3; ++axis) {
+    const AllanSums::AxisValues v = sums.Values(axis);
+    AxisSignalFault f;
+    f.gyroscope = gyroscope;
+    f.axis = axis;
+    f.value_si = v.first * si_per_unit;
+    f.resolution_si = v.resolution * si_per_unit;
+    f.adev_tau0_si = v.adev_tau0 * si_per_unit;
+    // White noise of σ per sample has an Allan deviation of σ at τ0; a
+    // quantiser of step q adds q/√12 and follows the noise only while σ is
+    // about q or more (Widrow & Kollár 2008, ch. 4): below, what varies is
+    // the quantiser's rounding.
+    if (v.distinct == 1) {
+      f.fault = SignalFault::kStuck;
+    } else if (v.distinct == 2) {
+      f.fault = SignalFault::kTwoValued;
+    } else if (v.adev_tau0 < v.resolution) {
+      f.fault = SignalFault::kBelowResolution;
+    } else {
+      continue;
+    }
+    out.push_back(f);
+  }
+  return out;
+}
+
 SensorNoise AnalyseSensorNoise(const AllanSums& sums,
                                double si_per_unit,
                                double sample_period_s,
@@ -45,6 +110,7 @@ SensorNoise AnalyseSensorNoise(const AllanSums& sums,
     out.axes[axis] = internal::AnalyseAxis(
         std::move(curves[axis]), static_cast<double>(sums.samples() + 1), options);
   }
+  SetRecordNeeded(out);
   return out;
 }
 

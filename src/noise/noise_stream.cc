@@ -1,5 +1,6 @@
 // The noise of a record as its rows arrive (NoiseStream): both sensors'
 // Allan sums, the sample period and the gaps, and the stillness judgement.
+#include <cmath>
 #include <exception>
 #include <memory>
 #include <span>
@@ -11,6 +12,7 @@
 
 #include "mpcal/error.h"
 #include "mpcal/noise.h"
+#include "mpcal/plausible.h"
 
 namespace mpcal {
 namespace {
@@ -22,6 +24,38 @@ constexpr double kGapFactor = 1.5;
 // Blocks this large run the gyroscope's sums on a second thread (below it,
 // starting the thread costs more than it saves).
 constexpr std::size_t kParallelRows = std::size_t{1} << 16;
+
+// The faults in one sentence, one clause per axis.
+std::string DescribeFaults(const std::vector<AxisSignalFault>& faults) {
+  std::string out =
+      "not producing noise, so no Allan deviation of it measures the sensor:";
+  for (std::size_t i = 0; i < faults.size(); ++i) {
+    const AxisSignalFault& f = faults[i];
+    const char* unit = f.gyroscope ? "rad/s" : "m/s²";
+    out += fmt::format("{} {} {}: ",
+                       i == 0 ? "" : ";",
+                       f.gyroscope ? "gyroscope" : "accelerometer",
+                       static_cast<char>('x' + f.axis));
+    switch (f.fault) {
+      case SignalFault::kStuck:
+        out += fmt::format("stuck at {:.6g} {} (one value throughout)", f.value_si, unit);
+        break;
+      case SignalFault::kTwoValued:
+        out += fmt::format("two values only, {:.6g} {} apart", f.resolution_si, unit);
+        break;
+      case SignalFault::kBelowResolution:
+        out += fmt::format(
+            "quantised beyond use (scatter {:.3g} {} per sample, below its "
+            "resolution {:.3g} {})",
+            f.adev_tau0_si,
+            unit,
+            f.resolution_si,
+            unit);
+        break;
+    }
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -42,14 +76,28 @@ NoiseStream::NoiseStream(const NoiseOptions& options,
 
 NoiseStream::~NoiseStream() = default;
 
+void NoiseStream::NoteBlock(double step_s, double at_s) {
+  if (!shortest_ || step_s < shortest_->step_s) shortest_ = BlockStep{step_s, at_s};
+  if (!longest_ || step_s > longest_->step_s) longest_ = BlockStep{step_s, at_s};
+}
+
+// The mean step of each block is a difference of two times a block apart:
+// it keeps its digits where a single step of a large time stamp does not.
 void NoiseStream::AddSteps(const std::vector<double>& t,
                            std::size_t begin,
                            std::size_t end) {
   gaps_.Add(std::span<const double>(t.data() + begin, end - begin));
+  if (rows_ == 0) first_time_s_ = block_begin_s_ = t[begin];
   for (std::size_t i = begin; i < end; ++i) {
-    if (rows_ + (i - begin) > 0) steps_.Add(t[i] - last_time_s_);
-    last_time_s_ = t[i];
+    if (rows_ + (i - begin) == 0) continue;
+    if (++block_steps_ == kUniformBlockSteps) {
+      NoteBlock((t[i] - block_begin_s_) / static_cast<double>(kUniformBlockSteps),
+                block_begin_s_);
+      block_begin_s_ = t[i];
+      block_steps_ = 0;
+    }
   }
+  last_time_s_ = t[end - 1];
 }
 
 void NoiseStream::Add(const Recording& rows, std::size_t begin, std::size_t end) {
@@ -84,6 +132,15 @@ void NoiseStream::Add(const Recording& rows, std::size_t begin, std::size_t end)
   rows_ += end - begin;
 }
 
+std::vector<AxisSignalFault> NoiseStream::Faults(double accel_mps2_per_unit) const {
+  std::vector<AxisSignalFault> out = SignalFaults(accel_, accel_mps2_per_unit, false);
+  if (has_gyro_) {
+    const std::vector<AxisSignalFault> g = SignalFaults(gyro_, 1.0, true);
+    out.insert(out.end(), g.begin(), g.end());
+  }
+  return out;
+}
+
 std::optional<StillVerdict> NoiseStream::Stillness() const {
   if (!stillness_) return std::nullopt;
   return stillness_->Verdict();
@@ -98,14 +155,56 @@ NoiseResult NoiseStream::Finish(double accel_mps2_per_unit,
                     source_,
                     rows_));
   }
-  NoiseResult r;
-  r.segment = segment;
-  r.sample_period_s = steps_.Quantile(0.5);
-  if (!(r.sample_period_s > 0.0))
-    throw Error(ErrorKind::kTime, source_ + ": no sample spacing");
-  r.rate_hz = 1.0 / r.sample_period_s;
+  const double span_s = last_time_s_ - first_time_s_;
+  const double rate_hz = static_cast<double>(rows_ - 1) / span_s;
+  if (!(span_s > 0.0) || !std::isfinite(rate_hz) || rate_hz > kMaxSampleRateHz) {
+    throw Error(ErrorKind::kTime,
+                fmt::format("{}: {} samples over {:.6g} s is not a sample rate (above "
+                            "{:g} Hz): the time column is not a time in the unit it "
+                            "is read in",
+                            source_,
+                            rows_,
+                            span_s,
+                            kMaxSampleRateHz));
+  }
+  std::optional<BlockStep> shortest = shortest_, longest = longest_;
+  if (block_steps_ >= kUniformBlockSteps / 4 && (shortest || longest)) {
+    const BlockStep tail{
+        (last_time_s_ - block_begin_s_) / static_cast<double>(block_steps_),
+        block_begin_s_};
+    if (tail.step_s < shortest->step_s) shortest = tail;
+    if (tail.step_s > longest->step_s) longest = tail;
+  }
   GapCounter gaps = gaps_;  // a copy: Finish counts the steps still held
   gaps.Finish();
+  if (shortest && longest->step_s > (1.0 + kUniformTolerance) * shortest->step_s) {
+    // A gap long enough to break uniformity on its own is named.
+    const bool long_gap =
+        gaps.largest_s() >
+        kUniformTolerance * static_cast<double>(kUniformBlockSteps) * gaps.typical_s();
+    throw Error(
+        ErrorKind::kTime,
+        fmt::format("{}: the sample rate is not uniform: {:.6g} Hz near t = {:.1f} s, "
+                    "{:.6g} Hz near t = {:.1f} s ({}); the Allan deviation needs one "
+                    "rate: analyse a stretch of one rate",
+                    source_,
+                    1.0 / shortest->step_s,
+                    shortest->at_s - first_time_s_,
+                    1.0 / longest->step_s,
+                    longest->at_s - first_time_s_,
+                    long_gap ? fmt::format("no samples for {:.3g} s after t = {:.1f} s",
+                                           gaps.largest_s(),
+                                           gaps.largest_at_s() - first_time_s_)
+                             : std::string("the rate changes, or samples were lost")));
+  }
+  if (const std::vector<AxisSignalFault> faults = Faults(accel_mps2_per_unit);
+      !faults.empty()) {
+    throw Error(ErrorKind::kInput, source_ + ": " + DescribeFaults(faults));
+  }
+  NoiseResult r;
+  r.segment = segment;
+  r.rate_hz = rate_hz;
+  r.sample_period_s = 1.0 / rate_hz;
   r.gaps = gaps.gaps();
   r.samples = rows_;
   r.record_s = static_cast<double>(r.samples) * r.sample_period_s;

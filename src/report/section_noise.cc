@@ -2,6 +2,7 @@
 // confidence band, the fitted terms and their sum, and the terms table in SI
 // and datasheet units.
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,7 +51,9 @@ double TermAdev(NoiseTerm t, double v, double tau_s) {
   return 0.0;
 }
 
-std::string Cell(const TermEstimate& e, double factor) {
+// `needed_s`: the sensor's one record length for the term (SensorNoise::
+// record_needed_s), the figure every output gives.
+std::string Cell(const TermEstimate& e, double factor, std::optional<double> needed_s) {
   if (e.value) {
     return fmt::format("{} [{}, {}]",
                        Significant(*e.value * factor, 4),
@@ -61,8 +64,8 @@ std::string Cell(const TermEstimate& e, double factor) {
     std::string s =
         fmt::format("not measured: < {}", Significant(e.upper_bound * factor, 3));
     if (e.status == TermStatus::kMasked) s += " (below its neighbours)";
-    if (e.record_needed_s)
-      s += fmt::format("; record \u2265 {:.1f} h", *e.record_needed_s / 3600);
+    if (e.record_needed_s && needed_s)
+      s += fmt::format("; record \u2265 {}", FormatRecordLength(*needed_s));
     return s;
   }
   return "not measured";
@@ -78,12 +81,14 @@ std::string TermsTable(const SensorNoise& s, bool gyro) {
     if (!any && (term == NoiseTerm::kQuantisation || term == NoiseTerm::kRateRamp))
       continue;
     std::vector<std::string> si = {TermName(term), noise_units::SiUnit(term, gyro)};
-    for (const AxisNoise& a : s.axes) si.push_back(Cell(a.term(term), 1.0));
+    for (const AxisNoise& a : s.axes)
+      si.push_back(Cell(a.term(term), 1.0, s.record_needed_s[i]));
     t.Row(si);
     const noise_units::DatasheetValue unit = noise_units::ToDatasheet(term, gyro, 1.0);
     if (unit.unit[0] == '\0') continue;
     std::vector<std::string> ds = {"", unit.unit};
-    for (const AxisNoise& a : s.axes) ds.push_back(Cell(a.term(term), unit.value));
+    for (const AxisNoise& a : s.axes)
+      ds.push_back(Cell(a.term(term), unit.value, s.record_needed_s[i]));
     t.Row(ds);
   }
   return t.Finish();

@@ -171,6 +171,39 @@ TEST(Corrector, GAndMps2CalibrationsServeEachOther) {
   EXPECT_NEAR(c(reading_mps2).z(), kGravity, 1e-12);
 }
 
+TEST(RecordingCorrector, RowsInCountsBecomeSi) {
+  const double k = 1.0 / 4096.0;
+  Calibration c = ConsumerCalibration(AccelUnits::kCounts, k);
+  GyroCalibration gyro;
+  gyro.input_units = GyroUnits::kCounts;
+  gyro.radps_per_unit = 1.0 / 4780.0;
+  gyro.bias_radps = Eigen::Vector3d(0.01, -0.02, 0.03);
+  c.gyroscope = gyro;
+  Recording rows;
+  rows.units = AccelUnits::kCounts;
+  rows.gyro_units = GyroUnits::kCounts;
+  const Eigen::Vector3d rate_radps(0.1, -0.2, 0.3);
+  for (const Eigen::Vector3d& d : Directions()) {
+    rows.time_s.push_back(static_cast<double>(rows.size()));
+    rows.accel.push_back(c.model.Forward(kGravity * d) / k);
+    rows.gyro_radps.push_back((rate_radps + gyro.bias_radps) * 4780.0);
+  }
+  const RecordingCorrector correct(c, AccelUnits::kCounts, GyroUnits::kCounts);
+  EXPECT_TRUE(correct.corrects_gyro());
+  const Recording si = correct(rows);
+  EXPECT_EQ(si.units, AccelUnits::kMps2);
+  EXPECT_EQ(si.gyro_units, GyroUnits::kRadps);
+  for (std::size_t i = 0; i < si.size(); ++i) {
+    EXPECT_LE((si.accel[i] - kGravity * Directions()[i]).norm(), 1e-9);
+    EXPECT_LE((si.gyro_radps[i] - rate_radps).norm(), 1e-12);
+  }
+  // Gyroscope counts with a calibration that has no gyroscope: no scale.
+  c.gyroscope.reset();
+  EXPECT_THROW(RecordingCorrector(c, AccelUnits::kCounts, GyroUnits::kCounts), Error);
+  EXPECT_FALSE(
+      RecordingCorrector(c, AccelUnits::kCounts, GyroUnits::kRadps).corrects_gyro());
+}
+
 TEST(CheckCalibrationApplies, CountsOnlyWithCounts) {
   const Calibration counts = ConsumerCalibration(AccelUnits::kCounts, 1.0 / 4096);
   EXPECT_NO_THROW(CheckCalibrationApplies(counts, AccelUnits::kCounts));

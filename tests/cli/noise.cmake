@@ -101,3 +101,95 @@ mpcal_cli_test(noise_ten_minutes_how_long EXIT 0
   ARGS noise ${_ten})
 set_tests_properties(cli.noise_ten_minutes_no_random_walk_number cli.noise_ten_minutes_how_long
   PROPERTIES FIXTURES_REQUIRED noise_ten_minutes)
+add_test(NAME cli.noise_one_record_length
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/noise_one_record_length.sh $<TARGET_FILE:mpcal_cli>
+          ${_ten} ${CMAKE_CURRENT_BINARY_DIR}/noise_one_record_length)
+set_tests_properties(cli.noise_one_record_length PROPERTIES
+  FIXTURES_REQUIRED noise_ten_minutes LABELS cli)
+
+# Records made from the ten minutes that no noise figure can come from (a
+# stuck axis, a toggling one, a rate that changes halfway), each refused
+# with one line naming it and no file left behind; and one lost sample.
+set(_make ${CMAKE_CURRENT_SOURCE_DIR}/noise_make_record.sh)
+foreach(_case stuck toggling rate_change one_gap long_gap)
+  add_test(NAME cli.noise_make_${_case}
+    COMMAND ${_make} ${_case} ${_ten} ${CMAKE_CURRENT_BINARY_DIR}/noise_${_case}.csv)
+  set_tests_properties(cli.noise_make_${_case} PROPERTIES
+    FIXTURES_REQUIRED noise_ten_minutes FIXTURES_SETUP noise_${_case} LABELS cli)
+endforeach()
+mpcal_cli_test(noise_stuck_axis EXIT 1
+  MATCH "mpcal: error: .*not producing noise.*: accelerometer z: stuck at 9\\.81 m/s²" ABSENT n.json
+  ARGS noise ${CMAKE_CURRENT_BINARY_DIR}/noise_stuck.csv --json n.json)
+mpcal_cli_test(noise_toggling_axis EXIT 1
+  MATCH "mpcal: error: .*: gyroscope x: two values only, 0\\.001 rad/s apart" ABSENT imu.yaml
+  ARGS noise ${CMAKE_CURRENT_BINARY_DIR}/noise_toggling.csv --kalibr imu.yaml)
+mpcal_cli_test(noise_rate_change EXIT 1
+  MATCH "mpcal: error: .*: the sample rate is not uniform: 200 Hz near t = [0-9.]+ s, 100 Hz near t = [0-9.]+ s \\(the rate changes" ABSENT n.json
+  ARGS noise ${CMAKE_CURRENT_BINARY_DIR}/noise_rate_change.csv --whole --json n.json)
+mpcal_cli_test(noise_one_gap EXIT 0 MATCH "note: 1 gap in time \\(samples lost\\)"
+  ARGS noise ${CMAKE_CURRENT_BINARY_DIR}/noise_one_gap.csv)
+set_tests_properties(cli.noise_stuck_axis PROPERTIES FIXTURES_REQUIRED noise_stuck)
+set_tests_properties(cli.noise_toggling_axis PROPERTIES FIXTURES_REQUIRED noise_toggling)
+set_tests_properties(cli.noise_rate_change PROPERTIES FIXTURES_REQUIRED noise_rate_change)
+set_tests_properties(cli.noise_one_gap PROPERTIES FIXTURES_REQUIRED noise_one_gap)
+# Detection does not split a still record at a gap: the whole is refused.
+mpcal_cli_test(noise_long_gap EXIT 1
+  MATCH "mpcal: error: .*not uniform: .*\\(no samples for 2\\.0[0-9] s after t = 2[0-9.]+ s\\)"
+  ABSENT n.json ARGS noise ${CMAKE_CURRENT_BINARY_DIR}/noise_long_gap.csv --json n.json)
+set_tests_properties(cli.noise_long_gap PROPERTIES FIXTURES_REQUIRED noise_long_gap)
+
+# Raw counts: refused without a scale; with the calibration that made them
+# (simulate static's truth, an IMU file in counts), SI figures. The truth is
+# a white noise of density 0.002 m/s²/√Hz and 0.0002 rad/s/√Hz stated
+# one-sided (σ = ρ·√(rate/2)): N = ρ/√2, 0.001414 and 0.0001414; ten
+# minutes at 100 Hz measure them to about 1 %.
+mpcal_cli_test(noise_gyro_counts_refused EXIT 1 MATCH "gyroscope in physical units"
+  ABSENT n.json ARGS noise ${_still} --gyro-units counts --json n.json)
+set(_raw ${CMAKE_CURRENT_BINARY_DIR}/noise_counts.csv)
+add_test(NAME cli.noise_counts_simulate
+  COMMAND $<TARGET_FILE:mpcal_cli> simulate static --positions 1 --rest 600 --rate 100
+          --noise-density 0.002 --gyro-noise-density 0.0002 --units counts --gyro
+          --gyro-units counts --seed 4 -o ${_raw} --truth ${_raw}.truth.json)
+set_tests_properties(cli.noise_counts_simulate PROPERTIES
+  FIXTURES_SETUP noise_counts LABELS cli)
+mpcal_cli_test(noise_counts_need_a_scale EXIT 1 MATCH "physical units.*--calib"
+  ARGS noise ${_raw} --units counts --gyro-units counts)
+mpcal_cli_test(noise_counts_calibrated_accelerometer EXIT 0
+  MATCH "white noise N \\(VRW\\) +m/s²/√Hz +0\\.001(3[5-9]|4[0-8])[0-9]* "
+  ARGS noise ${_raw} --calib ${_raw}.truth.json)
+mpcal_cli_test(noise_counts_calibrated_gyroscope EXIT 0
+  MATCH "white noise N \\(ARW\\) +rad/s/√Hz +0\\.0001(3[5-9]|4[0-8])[0-9]* "
+  ARGS noise ${_raw} --calib ${_raw}.truth.json)
+set_tests_properties(cli.noise_counts_need_a_scale cli.noise_counts_calibrated_accelerometer
+  cli.noise_counts_calibrated_gyroscope PROPERTIES FIXTURES_REQUIRED noise_counts)
+
+# Careless input: every bad flag value and empty path is a usage error (2);
+# a file written before a later one fails is removed; help offers only what
+# noise uses.
+foreach(_flag json kalibr calib)
+  add_test(NAME cli.noise_empty_${_flag}
+    COMMAND sh -c "'${MPCAL_CLI_EXPECT}' 2 '--${_flag}.*empty' -- '$<TARGET_FILE:mpcal_cli>' noise '${_still}' --${_flag} ''")
+  set_tests_properties(cli.noise_empty_${_flag} PROPERTIES LABELS cli)
+endforeach()
+add_test(NAME cli.noise_empty_input
+  COMMAND sh -c "'${MPCAL_CLI_EXPECT}' 2 'INPUT.*empty' -- '$<TARGET_FILE:mpcal_cli>' noise ''")
+add_test(NAME cli.noise_help_only_its_options
+  COMMAND sh -c "'$<TARGET_FILE:mpcal_cli>' noise --help > noise_help.txt && grep -q -- '--json TEXT:PATH' noise_help.txt && grep -q -- '--kalibr TEXT:PATH' noise_help.txt && grep -q -- '--window' noise_help.txt && ! grep -Eq -- '--model|--robust|--counts-per-g|from the positions|from the turns' noise_help.txt")
+set_tests_properties(cli.noise_empty_input cli.noise_help_only_its_options
+  PROPERTIES LABELS cli)
+mpcal_cli_test(noise_points_per_octave_nan EXIT 2 MATCH "--points-per-octave"
+  ARGS noise ${_still} --points-per-octave nan)
+mpcal_cli_test(noise_confidence_nan EXIT 2 MATCH "--confidence"
+  ARGS noise ${_still} --confidence nan)
+mpcal_cli_test(noise_json_removed_when_kalibr_fails EXIT 1 MATCH "/dev/full" ABSENT n.json
+  ARGS noise ${_still} --json n.json --kalibr /dev/full)
+mpcal_cli_test(noise_threshold_nan EXIT 2
+  MATCH "--threshold: must be a number in \\[1, 100\\], got 'nan'"
+  ARGS noise ${_still} --threshold nan)
+mpcal_cli_test(noise_height_nan EXIT 2 MATCH "--height: must be a finite number"
+  ARGS noise ${_still} --latitude 45 --height nan)
+# A topic with a newline stays one quoted value: one update_rate in the file.
+add_test(NAME cli.noise_kalibr_hostile_topic
+  COMMAND sh -c "'$<TARGET_FILE:mpcal_cli>' noise '${_still}' --kalibr hostile.yaml --rostopic \"$(printf '/imu0\\nupdate_rate: 1 # x')\" >/dev/null 2>&1 && test $(grep -c '^update_rate' hostile.yaml) -eq 1 && grep -q '^rostopic: \"/imu0\\\\nupdate_rate: 1 # x\"$' hostile.yaml")
+set_tests_properties(cli.noise_kalibr_hostile_topic PROPERTIES
+  LABELS cli WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})

@@ -5,6 +5,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include "mpcal/error.h"
 #include "mpcal/noise.h"
@@ -60,6 +61,8 @@ NoiseResult Example(bool gyro_walk_measured) {
       ax->curve.push_back(p);
     }
   }
+  SetRecordNeeded(a);
+  SetRecordNeeded(g);
   r.accel_mps2 = a;
   r.gyro_radps = g;
   return r;
@@ -98,7 +101,7 @@ TEST(KalibrYaml, LargestAxisOfMeasuredValues) {
   EXPECT_THAT(k.text, HasSubstr("gyroscope_noise_density: 1.200000e-04"));
   EXPECT_THAT(k.text, HasSubstr("gyroscope_random_walk: 3.000000e-06"));
   EXPECT_THAT(k.text, HasSubstr("update_rate: 200"));
-  EXPECT_THAT(k.text, HasSubstr("rostopic: /imu0"));
+  EXPECT_THAT(k.text, HasSubstr("rostopic: \"/imu0\""));
   EXPECT_THAT(k.text, HasSubstr("# Rule across axes: the largest of x, y, z"));
   EXPECT_THAT(k.text, HasSubstr("from axis z"));
   EXPECT_THAT(k.text, testing::Not(HasSubstr("UPPER BOUND")));
@@ -111,9 +114,53 @@ TEST(KalibrYaml, RandomWalkNotMeasuredIsItsBoundLabelled) {
   const KalibrFile k = KalibrYaml(Example(false), "still.csv", "/imu0");
   EXPECT_TRUE(k.gyro_random_walk.upper_bound);
   EXPECT_DOUBLE_EQ(k.gyro_random_walk.value, 1.5e-5);
-  EXPECT_THAT(k.text, HasSubstr("gyroscope_random_walk: 1.500000e-05  #  UPPER BOUND"));
+  EXPECT_THAT(
+      k.text,
+      HasSubstr("gyroscope_random_walk: 1.500000e-05  # UPPER BOUND, rad/s^2/sqrt(Hz)"));
   EXPECT_THAT(k.text, HasSubstr("NOT MEASURED"));
   EXPECT_THAT(k.text, HasSubstr("record at least 8.3 h"));
+  ASSERT_TRUE(k.gyro_random_walk.record_needed_s.has_value());
+  EXPECT_DOUBLE_EQ(*k.gyro_random_walk.record_needed_s, 30000.0);
+}
+
+// The sensor's one figure of how long to record: the longest of the axes
+// where the term was not seen, whichever axis the Kalibr value came from.
+TEST(KalibrYaml, RecordNeededIsTheSensorsOneFigure) {
+  NoiseResult r = Example(false);
+  r.gyro_radps->axes[0].terms[3].record_needed_s = 50000.0;  // x: bound 5e-6
+  SetRecordNeeded(*r.gyro_radps);
+  EXPECT_DOUBLE_EQ(*r.gyro_radps->record_needed_s[3], 50000.0);
+  const KalibrFile k = KalibrYaml(r, "still.csv", "/imu0");
+  EXPECT_EQ(k.gyro_random_walk.axis, 2);  // the largest bound is z's
+  EXPECT_DOUBLE_EQ(*k.gyro_random_walk.record_needed_s, 50000.0);
+  EXPECT_THAT(k.text, HasSubstr("record at least " + FormatRecordLength(50000.0)));
+  EXPECT_EQ(FormatRecordLength(50000.0), "13.9 h");
+  EXPECT_EQ(FormatRecordLength(2760.0), "46 min");
+  const NoiseFile back = ParseNoiseJson(NoiseJson(r, "still.csv", 0.95), "test");
+  EXPECT_DOUBLE_EQ(*back.result.gyro_radps->record_needed_s[3], 50000.0);
+}
+
+// Read back by a YAML parser: every key once, every value as written, a
+// hostile topic and input name kept whole (no injected key, no truncation).
+TEST(KalibrYaml, ReadsBackWithHostileNames) {
+  const std::string topic = "/imu0\nupdate_rate: 1 # cut: here";
+  const std::string input = "a\nrostopic: x # b.csv";
+  const NoiseResult r = Example(false);
+  const KalibrFile k = KalibrYaml(r, input, topic);
+  const YAML::Node y = YAML::Load(k.text);
+  ASSERT_TRUE(y.IsMap());
+  EXPECT_EQ(y.size(), 6u);
+  EXPECT_EQ(y["rostopic"].as<std::string>(), topic);
+  EXPECT_DOUBLE_EQ(y["update_rate"].as<double>(), 200.0);
+  EXPECT_NEAR(y["accelerometer_noise_density"].as<double>() / 3e-3, 1.0, 1e-6);
+  EXPECT_NEAR(y["accelerometer_random_walk"].as<double>() / 6e-5, 1.0, 1e-6);
+  EXPECT_NEAR(y["gyroscope_noise_density"].as<double>() / 1.2e-4, 1.0, 1e-6);
+  EXPECT_NEAR(y["gyroscope_random_walk"].as<double>() / 1.5e-5, 1.0, 1e-6);
+  // The comment lines: the header, and one line per value.
+  EXPECT_THAT(k.text, HasSubstr("# Kalibr IMU noise model, measured by mpcal"));
+  EXPECT_THAT(k.text, HasSubstr("# Rule across axes: the largest of x, y, z"));
+  EXPECT_THAT(k.text, HasSubstr("# gyroscope_random_walk from axis z"));
+  EXPECT_THAT(k.text, HasSubstr("m/s^2/sqrt(Hz)"));
 }
 
 TEST(KalibrYaml, NeedsAGyroscope) {

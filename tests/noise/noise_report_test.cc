@@ -35,6 +35,8 @@ TEST(NoiseReport, SectionHasTheTableAndALogLogPlotPerAxis) {
   EXPECT_THAT(section, HasSubstr("white noise N"));
   EXPECT_THAT(section, HasSubstr("sum of the fitted terms"));
   EXPECT_THAT(section, HasSubstr("not measured: &lt; "));  // the random walk of 3 minutes
+  // How long to record: the sensor's one figure, as the command prints it.
+  EXPECT_THAT(section, HasSubstr("record \u2265 5 min"));
   EXPECT_THAT(section, HasSubstr("\u00b5g/\u221aHz"));
   EXPECT_THAT(section, ::testing::Not(HasSubstr("nan")));
   EXPECT_THAT(section, ::testing::Not(HasSubstr("inf\"")));

@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "mpcal/error.h"
@@ -105,8 +107,153 @@ TEST(NoiseStream, GapsAreStepsOverOneAndAHalfTheFirstSteps) {
   const NoiseResult r =
       Feed(s, rec, 300).Finish(1.0, {NoiseSegmentKind::kWholeRecord, 0, rec.size(), 1});
   EXPECT_EQ(r.gaps, 5u);
-  EXPECT_NEAR(r.sample_period_s, 0.01, 1e-12);
+  // The rate is the count over the span: 14 samples lost in 30,000 lower it.
+  const double span_s = rec.time_s.back() - rec.time_s.front();
+  EXPECT_NEAR(r.rate_hz, static_cast<double>(rec.size() - 1) / span_s, 1e-9);
+  EXPECT_NEAR(r.rate_hz, 100.0 * (1.0 - 14.0 / 30000.0), 1e-3);
   EXPECT_FALSE(s.Stillness().has_value());
+}
+
+NoiseResult Analyse(const Recording& rec) {
+  return AnalyseNoise(
+      rec, {NoiseSegmentKind::kWholeRecord, 0, rec.size(), 1}, 1.0, NoiseOptions{});
+}
+
+// What Finish refuses with, for messages checked by the tests.
+std::string Refusal(const Recording& rec) {
+  try {
+    Analyse(rec);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(NoiseStream, RateOfAMillisecondClockIsTheCountOverTheSpan) {
+  // 300 Hz logged with a millisecond clock: steps of 3, 3, 4 ms. The median
+  // step says 333 Hz, and every density would be √(333/300) off.
+  NoiseSimulationOptions o = *NoisePreset("consumer");
+  o.duration_s = 600.0;
+  o.rate_hz = 300.0;
+  o.seed = 11;
+  Recording rec = SimulatedStill(o);
+  for (double& t : rec.time_s) t = std::floor(t * 1000.0 + 1e-6) / 1000.0;
+  const NoiseResult r = Analyse(rec);
+  EXPECT_NEAR(r.rate_hz, 300.0, 0.01);  // the span is good to 1 ms in 600 s
+  EXPECT_EQ(r.gaps, 0u);
+  for (int axis = 0; axis < 3; ++axis) {
+    const double truth = o.accel_mps2[axis].white_noise;
+    // 180,000 samples measure N to a few tenths of a percent.
+    EXPECT_NEAR(
+        *r.accel_mps2.axes[axis].term(NoiseTerm::kWhiteNoise).value / truth, 1.0, 0.02)
+        << axis;
+  }
+}
+
+TEST(NoiseStream, TimesOfAHundredBillionSecondsGiveTheRate) {
+  // A double resolves 1.5e-5 s at 1e11 s: single steps of 10 ms are off by
+  // up to 0.15 %, the span of the record is not.
+  Recording rec = StillRecord(5.0, 100.0, 12);
+  for (double& t : rec.time_s) t += 1e11;
+  EXPECT_NEAR(Analyse(rec).rate_hz, 100.0, 1e-3);
+}
+
+TEST(NoiseStream, ARateThatChangesIsRefused) {
+  // 5 min at 100 Hz, then 5 min at 200 Hz.
+  Recording rec = StillRecord(5.0, 100.0, 13);
+  const Recording fast = StillRecord(5.0, 200.0, 14);
+  const double end_s = rec.time_s.back();
+  for (std::size_t i = 1; i < fast.size(); ++i) {
+    rec.time_s.push_back(end_s + fast.time_s[i] - fast.time_s[0]);
+    rec.accel.push_back(fast.accel[i]);
+    rec.gyro_radps.push_back(fast.gyro_radps[i]);
+  }
+  const std::string why = Refusal(rec);
+  EXPECT_THAT(why,
+              testing::HasSubstr("the sample rate is not uniform: 200 Hz near t = "));
+  EXPECT_THAT(why, testing::HasSubstr("100 Hz near t = "));
+}
+
+TEST(NoiseStream, ALargeGapIsRefusedAndASmallOneCounted) {
+  Recording rec = StillRecord(5.0, 100.0, 15);
+  const auto drop = [&](std::size_t at, std::size_t len) {
+    rec.time_s.erase(rec.time_s.begin() + at, rec.time_s.begin() + at + len);
+    rec.accel.erase(rec.accel.begin() + at, rec.accel.begin() + at + len);
+    rec.gyro_radps.erase(rec.gyro_radps.begin() + at, rec.gyro_radps.begin() + at + len);
+  };
+  drop(10000, 20);  // 2 % of a block of 1,024 steps: counted
+  EXPECT_EQ(Analyse(rec).gaps, 1u);
+  drop(20000, 200);  // 20 %: refused, the gap named
+  const std::string why = Refusal(rec);
+  EXPECT_THAT(why, testing::HasSubstr("the sample rate is not uniform"));
+  EXPECT_THAT(why, testing::HasSubstr("(no samples for 2.01 s after t = 200."));
+}
+
+TEST(NoiseStream, StepsThatAreNoTimeAreRefused) {
+  Recording rec = StillRecord(0.5, 100.0, 16);
+  for (std::size_t i = 0; i < rec.size(); ++i) rec.time_s[i] = 1e-300 * (i + 1.0);
+  EXPECT_THAT(Refusal(rec), testing::HasSubstr("is not a sample rate"));
+}
+
+// The axes that produce no noise: a stuck one, a toggling one, one rounded
+// far coarser than its noise; each named, with its figures.
+TEST(NoiseStream, AxesThatProduceNoNoiseAreNamed) {
+  Recording rec = StillRecord(5.0, 100.0, 17);
+  const double q = 0.05;  // m/s²; the accelerometer's σ per sample is 0.015
+  double mean_x = 0.0;
+  for (const Eigen::Vector3d& a : rec.accel) mean_x += a.x() / rec.size();
+  for (std::size_t i = 0; i < rec.size(); ++i) {
+    // About a level of the quantiser: 0 and ±q, so three values or more.
+    rec.accel[i].x() = std::round((rec.accel[i].x() - mean_x) / q) * q;
+    rec.accel[i].z() = 9.81;
+    rec.gyro_radps[i].y() = (i % 2 == 0) ? 0.001 : 0.002;
+  }
+  NoiseStream s(NoiseOptions{}, nullptr, AccelUnits::kMps2);
+  s.Add(rec);
+  const std::vector<AxisSignalFault> faults = s.Faults(1.0);
+  ASSERT_EQ(faults.size(), 3u);
+  EXPECT_FALSE(faults[0].gyroscope);
+  EXPECT_EQ(faults[0].axis, 0);
+  EXPECT_EQ(faults[0].fault, SignalFault::kBelowResolution);
+  EXPECT_NEAR(faults[0].resolution_si, q, 1e-12);
+  EXPECT_LT(faults[0].adev_tau0_si, q);
+  EXPECT_EQ(faults[1].axis, 2);
+  EXPECT_EQ(faults[1].fault, SignalFault::kStuck);
+  EXPECT_DOUBLE_EQ(faults[1].value_si, 9.81);
+  EXPECT_TRUE(faults[2].gyroscope);
+  EXPECT_EQ(faults[2].axis, 1);
+  EXPECT_EQ(faults[2].fault, SignalFault::kTwoValued);
+  EXPECT_NEAR(faults[2].resolution_si, 0.001, 1e-12);
+  const std::string why = Refusal(rec);
+  EXPECT_THAT(why, testing::HasSubstr("accelerometer x: quantised beyond use"));
+  EXPECT_THAT(why, testing::HasSubstr("accelerometer z: stuck at 9.81 m/s²"));
+  EXPECT_THAT(why, testing::HasSubstr("gyroscope y: two values only"));
+}
+
+TEST(NoiseStream, NoiseRoundedFinerThanItselfIsNoise) {
+  // Rounded to a quarter of its σ per sample, as a logger writing few digits
+  // does: still the sensor's noise.
+  Recording rec = StillRecord(5.0, 100.0, 18);
+  for (Eigen::Vector3d& a : rec.accel) a = (a / 0.004).array().round() * 0.004;
+  NoiseStream s(NoiseOptions{}, nullptr, AccelUnits::kMps2);
+  s.Add(rec);
+  EXPECT_TRUE(s.Faults(1.0).empty());
+  EXPECT_NO_THROW(s.Finish(1.0, {NoiseSegmentKind::kWholeRecord, 0, rec.size(), 1}));
+}
+
+TEST(NoiseStream, AConstantLogIsRefused) {
+  Recording rec = StillRecord(1.0, 100.0, 19);
+  for (Eigen::Vector3d& a : rec.accel) a = Eigen::Vector3d(0.0, 0.0, 9.81);
+  for (Eigen::Vector3d& g : rec.gyro_radps) g.setZero();
+  const std::string why = Refusal(rec);
+  for (const char* axis : {"accelerometer x: stuck at 0 m/s²",
+                           "accelerometer y: stuck",
+                           "accelerometer z: stuck",
+                           "gyroscope x: stuck at 0 rad/s",
+                           "gyroscope y: stuck",
+                           "gyroscope z: stuck"}) {
+    EXPECT_THAT(why, testing::HasSubstr(axis));
+  }
 }
 
 TEST(NoiseStream, ACalibrationSessionMoved) {
