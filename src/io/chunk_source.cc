@@ -164,9 +164,12 @@ struct ChunkPipeline::Slot {
 ChunkPipeline::ChunkPipeline(LogFile* file,
                              std::string_view first_bytes,
                              RowConversion conversion)
-    : file_(file),
-      conversion_(conversion),
-      carry_(first_bytes.begin(), first_bytes.end()) {
+    : file_(file), conversion_(conversion), head_(first_bytes) {
+  // The header is found in the first chunk only.
+  for (std::size_t line = 0; line < conversion.header_line; ++line) {
+    const std::size_t nl = head_.find('\n', head_min_bytes_);
+    head_min_bytes_ = nl == std::string_view::npos ? head_.size() : nl + 1;
+  }
   for (auto& slot : slots_) slot = std::make_unique<Slot>();
   try {
     helper_ = std::thread([this] {
@@ -269,14 +272,39 @@ ChunkPipeline::Slot* ChunkPipeline::Claim(bool wait) {
   return c;
 }
 
+// Fills `c` with the next whole lines of the head, about kParseChunkBytes,
+// copied a chunk at a time: the head is a mebibyte, and a copy of it whole
+// would be held while the whole log is read. False when what is left of the
+// head is to begin a chunk read from the file (it is then the carry).
+bool ChunkPipeline::TakeFromHead(Slot* c) {
+  if (head_.empty()) return false;
+  std::size_t take = head_.size();
+  const std::size_t limit = std::max(kParseChunkBytes, head_min_bytes_);
+  if (take > limit) {
+    const auto* nl = static_cast<const char*>(::memrchr(head_.data(), '\n', limit));
+    if (nl != nullptr) take = static_cast<std::size_t>(nl - head_.data()) + 1;
+  }
+  if (take == head_.size() && !file_->eof()) {
+    carry_.assign(head_.begin(), head_.end());
+    head_ = {};
+    return false;
+  }
+  c->Reserve(take, 0);
+  std::memcpy(c->bytes.get(), head_.data(), take);
+  c->size = take;
+  head_.remove_prefix(take);
+  return true;
+}
+
 // Fills `c` with the carried-over bytes and whole lines read after them,
-// about kChunkBytes; false when the input has ended.
+// about kParseChunkBytes; false when the input has ended.
 bool ChunkPipeline::Read(Slot* c) {
   ChunkRows& rows = c->rows;
   rows.read_error.clear();
   rows.line_too_long = false;
+  if (TakeFromHead(c)) return true;
   std::size_t size = carry_.size();
-  std::size_t want = std::max(kChunkBytes, size);
+  std::size_t want = std::max(kParseChunkBytes, size);
   c->Reserve(want, 0);
   std::memcpy(c->bytes.get(), carry_.data(), size);
   carry_.clear();
@@ -304,7 +332,7 @@ bool ChunkPipeline::Read(Slot* c) {
       size = 0;
       break;
     }
-    want = size + kChunkBytes;
+    want = size + kParseChunkBytes;
     c->Reserve(want, size);
   }
   c->size = size;

@@ -24,10 +24,13 @@ namespace mpcal::logio {
 /// A line longer than this means the input is not a log (binary junk, or a
 /// file without line ends).
 inline constexpr std::size_t kMaxLineBytes = std::size_t{1} << 19;
-/// The first bytes read to find the layout, and the size of a chunk: large
-/// enough that read(2) calls and per-chunk bookkeeping vanish next to number
-/// parsing, small enough to stay in cache.
+/// The first bytes read to find the layout (and LineReader's first buffer).
 inline constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
+/// The size of a chunk ChunkPipeline parses: large enough that read(2) calls
+/// and per-chunk bookkeeping vanish next to number parsing (a thousand rows),
+/// small enough that the chunks in flight and their parsed rows (about 1.5
+/// times the bytes) stay small beside the rows a short log is read into.
+inline constexpr std::size_t kParseChunkBytes = std::size_t{1} << 16;
 
 /// "line N: longer than ... KiB" as an Error.
 [[noreturn]] void ThrowLineTooLong(const std::string& source, std::size_t line);
@@ -123,11 +126,12 @@ struct RowConversion {
 /// cores: the input is cut into chunks of whole lines, read in file order by
 /// whichever thread is free; each is parsed into its own rows; the calling
 /// thread takes the parsed chunks in file order (Next) and hands each back
-/// (Release). Memory: kChunksInFlight chunks at most.
+/// (Release). Memory: kChunksInFlight chunks of about kParseChunkBytes
+/// at most.
 class ChunkPipeline {
  public:
   /// `first_bytes`: what was read before (the layout's head), from where the
-  /// rows start.
+  /// rows start; not copied whole: it must outlive the pipeline.
   ChunkPipeline(LogFile* file, std::string_view first_bytes, RowConversion conversion);
   ~ChunkPipeline();
   ChunkPipeline(const ChunkPipeline&) = delete;
@@ -148,6 +152,7 @@ class ChunkPipeline {
   struct Slot;
   Slot* Claim(bool wait);
   bool Read(Slot* c);
+  bool TakeFromHead(Slot* c);
   void Parse(Slot* c);
   void ParseLines(Slot* c) const;
   void Finish(Slot* c);
@@ -157,7 +162,9 @@ class ChunkPipeline {
   RowConversion conversion_;
   std::thread helper_;
 
-  std::mutex read_mutex_;  // reading: one thread at a time, in file order
+  std::mutex read_mutex_;           // reading: one thread at a time, in file order
+  std::string_view head_;           // the first bytes not yet in a chunk
+  std::size_t head_min_bytes_ = 0;  // the first chunk's least: through the header
   std::vector<char> carry_;
   std::uint64_t consumed_ = 0;  // the calling thread's
 

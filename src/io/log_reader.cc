@@ -233,7 +233,6 @@ LogStreamSummary ReadRows(const std::string& path,
   if (consume) sink.StreamTo(std::move(consume));
   {
     logio::ChunkPipeline pipeline(&file, head.substr(start), conversion);
-    head_bytes.reset();
     while (const logio::ChunkRows* chunk = pipeline.Next()) {
       sink.Append(*chunk);
       pipeline.Release();
