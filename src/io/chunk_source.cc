@@ -82,6 +82,13 @@ std::size_t LogFile::Read(char* dst, std::size_t n, bool fill, std::string* erro
   return got;
 }
 
+bool LogFile::Seek(std::uint64_t offset) {
+  if (!owns_fd_ || size_ == 0) return false;
+  if (::lseek(fd_, static_cast<off_t>(offset), SEEK_SET) < 0) return false;
+  eof_ = false;
+  return true;
+}
+
 // ---------------------------------------------------------------------------
 
 LineReader::LineReader(LogFile* file) : file_(file), buf_(kChunkBytes) { Refill(true); }
@@ -165,11 +172,6 @@ ChunkPipeline::ChunkPipeline(LogFile* file,
                              std::string_view first_bytes,
                              RowConversion conversion)
     : file_(file), conversion_(conversion), head_(first_bytes) {
-  // The header is found in the first chunk only.
-  for (std::size_t line = 0; line < conversion.header_line; ++line) {
-    const std::size_t nl = head_.find('\n', head_min_bytes_);
-    head_min_bytes_ = nl == std::string_view::npos ? head_.size() : nl + 1;
-  }
   for (auto& slot : slots_) slot = std::make_unique<Slot>();
   try {
     helper_ = std::thread([this] {
@@ -272,6 +274,11 @@ ChunkPipeline::Slot* ChunkPipeline::Claim(bool wait) {
   return c;
 }
 
+// The header is found in the first chunk only: that chunk reaches past it.
+std::size_t ChunkPipeline::FirstChunkBytes(const Slot* c) const {
+  return c->sequence == 0 ? conversion_.header_end : 0;
+}
+
 // Fills `c` with the next whole lines of the head, about kParseChunkBytes,
 // copied a chunk at a time: the head is a mebibyte, and a copy of it whole
 // would be held while the whole log is read. False when what is left of the
@@ -279,7 +286,7 @@ ChunkPipeline::Slot* ChunkPipeline::Claim(bool wait) {
 bool ChunkPipeline::TakeFromHead(Slot* c) {
   if (head_.empty()) return false;
   std::size_t take = head_.size();
-  const std::size_t limit = std::max(kParseChunkBytes, head_min_bytes_);
+  const std::size_t limit = std::max(kParseChunkBytes, FirstChunkBytes(c));
   if (take > limit) {
     const auto* nl = static_cast<const char*>(::memrchr(head_.data(), '\n', limit));
     if (nl != nullptr) take = static_cast<std::size_t>(nl - head_.data()) + 1;
@@ -304,7 +311,7 @@ bool ChunkPipeline::Read(Slot* c) {
   rows.line_too_long = false;
   if (TakeFromHead(c)) return true;
   std::size_t size = carry_.size();
-  std::size_t want = std::max(kParseChunkBytes, size);
+  std::size_t want = std::max({kParseChunkBytes, size, FirstChunkBytes(c)});
   c->Reserve(want, 0);
   std::memcpy(c->bytes.get(), carry_.data(), size);
   carry_.clear();

@@ -53,6 +53,9 @@ class LogFile {
   /// `fill` (pipes deliver a little at a time); returns the count. A read
   /// failure sets `*error` (the bytes before it are returned).
   std::size_t Read(char* dst, std::size_t n, bool fill, std::string* error);
+  /// Moves to byte `offset` of a regular file opened by name, to read it
+  /// again from there; false, with nothing done, for standard input.
+  bool Seek(std::uint64_t offset);
 
  private:
   std::string source_;
@@ -120,6 +123,7 @@ struct RowConversion {
   bool index_time = false;      // no time column: rows are numbered
   bool gyro = false;            // gyroscope columns parsed
   std::size_t header_line = 0;  // within the first chunk; 0 for none
+  std::size_t header_end = 0;   // bytes through the header line: the first chunk's least
 };
 
 /// ReadLog is bound by turning text into numbers, so it parses on two
@@ -153,6 +157,7 @@ class ChunkPipeline {
   Slot* Claim(bool wait);
   bool Read(Slot* c);
   bool TakeFromHead(Slot* c);
+  std::size_t FirstChunkBytes(const Slot* c) const;
   void Parse(Slot* c);
   void ParseLines(Slot* c) const;
   void Finish(Slot* c);
@@ -162,9 +167,8 @@ class ChunkPipeline {
   RowConversion conversion_;
   std::thread helper_;
 
-  std::mutex read_mutex_;           // reading: one thread at a time, in file order
-  std::string_view head_;           // the first bytes not yet in a chunk
-  std::size_t head_min_bytes_ = 0;  // the first chunk's least: through the header
+  std::mutex read_mutex_;  // reading: one thread at a time, in file order
+  std::string_view head_;  // the first bytes not yet in a chunk
   std::vector<char> carry_;
   std::uint64_t consumed_ = 0;  // the calling thread's
 
