@@ -6,7 +6,9 @@
 # relocate all of them at start: 1.7 MB of the Xsens calibration's peak
 # memory (bench/speed_bench.sh). Linked from their static archives instead,
 # only the objects Ceres refers to are copied in and nothing of them is
-# loaded. Where an archive is missing the shared libraries stay, all of them.
+# loaded. Where an archive is missing the shared libraries stay, all of them;
+# so they do in the sanitizer and fuzzing builds, which test the code, not
+# its footprint.
 option(MPCAL_STATIC_SOLVER_DEPS
        "Link Ceres's dependencies (glog, SuiteSparse, LAPACK, BLAS) from static archives"
        ON)
@@ -63,7 +65,7 @@ function(_mpcal_collect item)
 endfunction()
 
 function(mpcal_link_solver_deps_statically)
-  if(NOT MPCAL_STATIC_SOLVER_DEPS OR NOT TARGET Ceres::ceres)
+  if(NOT MPCAL_STATIC_SOLVER_DEPS OR MPCAL_SANITIZE OR MPCAL_FUZZ OR NOT TARGET Ceres::ceres)
     return()
   endif()
   set(_MPCAL_TARGETS "" CACHE INTERNAL "")
