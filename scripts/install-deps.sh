@@ -9,7 +9,6 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
-  lld                  # links mpcal with calibrate's code together (apps/mpcal/CMakeLists.txt)
   libeigen3-dev        # matrices, the error model
   libceres-dev         # nonlinear least squares, autodiff, covariance
   libgeographiclib-dev # WGS84 normal gravity, geodetic <-> local ENU
