@@ -1,12 +1,14 @@
 #include "chunk_source.h"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <new>
 #include <system_error>
 #include <utility>
 
@@ -15,6 +17,58 @@
 #include "mpcal/error.h"
 
 namespace mpcal::logio {
+
+#if defined(__SANITIZE_ADDRESS__)
+#define MPCAL_PAGE_BUFFER_IN_HEAP 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer)
+#define MPCAL_PAGE_BUFFER_IN_HEAP 1
+#endif
+#endif
+
+namespace {
+
+char* MapPages(std::size_t bytes) {
+#ifdef MPCAL_PAGE_BUFFER_IN_HEAP
+  return static_cast<char*>(::operator new(bytes));
+#else
+  void* p =
+      ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (p == MAP_FAILED) throw std::bad_alloc();
+  return static_cast<char*>(p);
+#endif
+}
+
+void UnmapPages(char* data, std::size_t bytes) {
+  if (data == nullptr) return;
+#ifdef MPCAL_PAGE_BUFFER_IN_HEAP
+  (void)bytes;
+  ::operator delete(data);
+#else
+  ::munmap(data, bytes);
+#endif
+}
+
+}  // namespace
+
+PageBuffer::PageBuffer(std::size_t bytes) : data_(MapPages(bytes)), size_(bytes) {}
+
+PageBuffer::~PageBuffer() { Release(); }
+
+void PageBuffer::Grow(std::size_t bytes) {
+  if (bytes <= size_) return;
+  char* const grown = MapPages(bytes);
+  std::memcpy(grown, data_, size_);
+  UnmapPages(data_, size_);
+  data_ = grown;
+  size_ = bytes;
+}
+
+void PageBuffer::Release() {
+  UnmapPages(data_, size_);
+  data_ = nullptr;
+  size_ = 0;
+}
 
 void ThrowLineTooLong(const std::string& source, std::size_t line) {
   throw Error(ErrorKind::kInput,
@@ -109,7 +163,7 @@ void LineReader::Refill(bool fill) {
     end_ -= begin_;
     begin_ = 0;
   }
-  if (end_ == buf_.size()) buf_.resize(buf_.size() * 2);
+  if (end_ == buf_.size()) buf_.Grow(buf_.size() * 2);
   std::string error;
   const std::size_t n = file_->Read(buf_.data() + end_, buf_.size() - end_, fill, &error);
   end_ += n;

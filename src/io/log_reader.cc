@@ -195,12 +195,11 @@ LogStreamSummary ReadRows(const std::string& path,
                           std::function<void(const Recording&)> consume) {
   ThrowIfInvalid(options);
   logio::LogFile file(path);
-  // Not zeroed first: read(2) writes it.
-  auto head_bytes = std::make_unique_for_overwrite<char[]>(logio::kChunkBytes);
+  logio::PageBuffer head_bytes(logio::kChunkBytes);
   std::string read_error;
   const std::string_view head(
-      head_bytes.get(),
-      file.Read(head_bytes.get(), logio::kChunkBytes, /*fill=*/true, &read_error));
+      head_bytes.data(),
+      file.Read(head_bytes.data(), logio::kChunkBytes, /*fill=*/true, &read_error));
   if (!read_error.empty()) throw Error(ErrorKind::kIo, read_error);
   const logio::DetectedLayout detected = logio::DetectLayout(head,
                                                              file.eof(),
@@ -242,7 +241,7 @@ LogStreamSummary ReadRows(const std::string& path,
   std::string_view first_bytes = head.substr(start);
   if (file.Seek(start)) {
     first_bytes = {};
-    head_bytes.reset();
+    head_bytes.Release();
   }
   {
     logio::ChunkPipeline pipeline(&file, first_bytes, conversion);
