@@ -20,6 +20,7 @@ packages=(
   libbenchmark-dev
   chromium             # headless rendering of the HTML report in tests
   python3              # checks the rendered report's DOM and screenshot
+  time                 # GNU time: peak memory in the bench and a CLI test
   python3-numpy        # bench/independent generators (gen_imu_session.py, gen_still.py)
   clang                # libFuzzer targets (make fuzz)
   clang-format         # the code's layout, checked by scripts/lint.sh (.ci/run)
