@@ -3,6 +3,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -105,6 +106,9 @@ void Run(CalibrateFlags& f) {
   f.calibrate.solve.gravity_mps2 = f.gravity.Resolve();
   ThrowIfInvalid(f.calibrate.Validate(), "calibrate");
 
+  // Found before the rows are read: its scanner's mebibyte buffer is then
+  // free again by the time the rows and the fit take the most memory.
+  std::optional<Calibration::InputLayout> input_layout = RecordedLayout(f.input, f.log);
   TerminalProgress progress("reading " + f.input);
   f.log.progress = progress.Callback();
   Recording recording = ReadLog(f.input, f.log);
@@ -134,7 +138,7 @@ void Run(CalibrateFlags& f) {
     }
   }
   result.calibration.provenance = Provenance{MPCAL_VERSION, f.input, DescribeOptions(f)};
-  result.calibration.input_layout = RecordedLayout(f.input, f.log);
+  result.calibration.input_layout = std::move(input_layout);
 
   fmt::print("{}: {} rows, {:.1f} s; model {}, gravity {:.5f} m/s2\n",
              f.input,

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <streambuf>
 #include <string_view>
 #include <vector>
@@ -25,8 +26,11 @@ namespace fs = std::filesystem;
 // errno of a failed write kept for the message (std::ofstream loses it).
 class FdStreambuf : public std::streambuf {
  public:
-  explicit FdStreambuf(int fd) : fd_(fd), buffer_(std::size_t{1} << 20) {
-    setp(buffer_.data(), buffer_.data() + buffer_.size());
+  // The buffer is not zeroed first: a small file (a calibration) then makes
+  // resident only the pages it is written into, not the whole mebibyte.
+  explicit FdStreambuf(int fd)
+      : fd_(fd), buffer_(std::make_unique_for_overwrite<char[]>(kBufferBytes)) {
+    setp(buffer_.get(), buffer_.get() + kBufferBytes);
   }
   ~FdStreambuf() override = default;
   FdStreambuf(const FdStreambuf&) = delete;
@@ -53,7 +57,7 @@ class FdStreambuf : public std::streambuf {
       return n;
     }
     if (!Flush()) return 0;
-    if (n >= static_cast<std::streamsize>(buffer_.size())) {
+    if (n >= static_cast<std::streamsize>(kBufferBytes)) {
       return WriteAll(s, static_cast<std::size_t>(n)) ? n : 0;
     }
     std::memcpy(pptr(), s, static_cast<std::size_t>(n));
@@ -66,8 +70,8 @@ class FdStreambuf : public std::streambuf {
  private:
   bool Flush() {
     const std::size_t n = static_cast<std::size_t>(pptr() - pbase());
-    setp(buffer_.data(), buffer_.data() + buffer_.size());
-    return n == 0 || WriteAll(buffer_.data(), n);
+    setp(buffer_.get(), buffer_.get() + kBufferBytes);
+    return n == 0 || WriteAll(buffer_.get(), n);
   }
 
   bool WriteAll(const char* data, std::size_t n) {
@@ -85,8 +89,9 @@ class FdStreambuf : public std::streambuf {
     return true;
   }
 
+  static constexpr std::size_t kBufferBytes = std::size_t{1} << 20;
   int fd_;
-  std::vector<char> buffer_;
+  std::unique_ptr<char[]> buffer_;
   int error_ = 0;
 };
 

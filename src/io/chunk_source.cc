@@ -1,12 +1,14 @@
 #include "chunk_source.h"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <new>
 #include <system_error>
 #include <utility>
 
@@ -15,6 +17,58 @@
 #include "mpcal/error.h"
 
 namespace mpcal::logio {
+
+#if defined(__SANITIZE_ADDRESS__)
+#define MPCAL_PAGE_BUFFER_IN_HEAP 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(memory_sanitizer)
+#define MPCAL_PAGE_BUFFER_IN_HEAP 1
+#endif
+#endif
+
+namespace {
+
+char* MapPages(std::size_t bytes) {
+#ifdef MPCAL_PAGE_BUFFER_IN_HEAP
+  return static_cast<char*>(::operator new(bytes));
+#else
+  void* p =
+      ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (p == MAP_FAILED) throw std::bad_alloc();
+  return static_cast<char*>(p);
+#endif
+}
+
+void UnmapPages(char* data, std::size_t bytes) {
+  if (data == nullptr) return;
+#ifdef MPCAL_PAGE_BUFFER_IN_HEAP
+  (void)bytes;
+  ::operator delete(data);
+#else
+  ::munmap(data, bytes);
+#endif
+}
+
+}  // namespace
+
+PageBuffer::PageBuffer(std::size_t bytes) : data_(MapPages(bytes)), size_(bytes) {}
+
+PageBuffer::~PageBuffer() { Release(); }
+
+void PageBuffer::Grow(std::size_t bytes) {
+  if (bytes <= size_) return;
+  char* const grown = MapPages(bytes);
+  std::memcpy(grown, data_, size_);
+  UnmapPages(data_, size_);
+  data_ = grown;
+  size_ = bytes;
+}
+
+void PageBuffer::Release() {
+  UnmapPages(data_, size_);
+  data_ = nullptr;
+  size_ = 0;
+}
 
 void ThrowLineTooLong(const std::string& source, std::size_t line) {
   throw Error(ErrorKind::kInput,
@@ -82,6 +136,13 @@ std::size_t LogFile::Read(char* dst, std::size_t n, bool fill, std::string* erro
   return got;
 }
 
+bool LogFile::Seek(std::uint64_t offset) {
+  if (!owns_fd_ || size_ == 0) return false;
+  if (::lseek(fd_, static_cast<off_t>(offset), SEEK_SET) < 0) return false;
+  eof_ = false;
+  return true;
+}
+
 // ---------------------------------------------------------------------------
 
 LineReader::LineReader(LogFile* file) : file_(file), buf_(kChunkBytes) { Refill(true); }
@@ -102,7 +163,7 @@ void LineReader::Refill(bool fill) {
     end_ -= begin_;
     begin_ = 0;
   }
-  if (end_ == buf_.size()) buf_.resize(buf_.size() * 2);
+  if (end_ == buf_.size()) buf_.Grow(buf_.size() * 2);
   std::string error;
   const std::size_t n = file_->Read(buf_.data() + end_, buf_.size() - end_, fill, &error);
   end_ += n;
@@ -164,9 +225,7 @@ struct ChunkPipeline::Slot {
 ChunkPipeline::ChunkPipeline(LogFile* file,
                              std::string_view first_bytes,
                              RowConversion conversion)
-    : file_(file),
-      conversion_(conversion),
-      carry_(first_bytes.begin(), first_bytes.end()) {
+    : file_(file), conversion_(conversion), head_(first_bytes) {
   for (auto& slot : slots_) slot = std::make_unique<Slot>();
   try {
     helper_ = std::thread([this] {
@@ -269,14 +328,44 @@ ChunkPipeline::Slot* ChunkPipeline::Claim(bool wait) {
   return c;
 }
 
+// The header is found in the first chunk only: that chunk reaches past it.
+std::size_t ChunkPipeline::FirstChunkBytes(const Slot* c) const {
+  return c->sequence == 0 ? conversion_.header_end : 0;
+}
+
+// Fills `c` with the next whole lines of the head, about kParseChunkBytes,
+// copied a chunk at a time: the head is a mebibyte, and a copy of it whole
+// would be held while the whole log is read. False when what is left of the
+// head is to begin a chunk read from the file (it is then the carry).
+bool ChunkPipeline::TakeFromHead(Slot* c) {
+  if (head_.empty()) return false;
+  std::size_t take = head_.size();
+  const std::size_t limit = std::max(kParseChunkBytes, FirstChunkBytes(c));
+  if (take > limit) {
+    const auto* nl = static_cast<const char*>(::memrchr(head_.data(), '\n', limit));
+    if (nl != nullptr) take = static_cast<std::size_t>(nl - head_.data()) + 1;
+  }
+  if (take == head_.size() && !file_->eof()) {
+    carry_.assign(head_.begin(), head_.end());
+    head_ = {};
+    return false;
+  }
+  c->Reserve(take, 0);
+  std::memcpy(c->bytes.get(), head_.data(), take);
+  c->size = take;
+  head_.remove_prefix(take);
+  return true;
+}
+
 // Fills `c` with the carried-over bytes and whole lines read after them,
-// about kChunkBytes; false when the input has ended.
+// about kParseChunkBytes; false when the input has ended.
 bool ChunkPipeline::Read(Slot* c) {
   ChunkRows& rows = c->rows;
   rows.read_error.clear();
   rows.line_too_long = false;
+  if (TakeFromHead(c)) return true;
   std::size_t size = carry_.size();
-  std::size_t want = std::max(kChunkBytes, size);
+  std::size_t want = std::max({kParseChunkBytes, size, FirstChunkBytes(c)});
   c->Reserve(want, 0);
   std::memcpy(c->bytes.get(), carry_.data(), size);
   carry_.clear();
@@ -304,7 +393,7 @@ bool ChunkPipeline::Read(Slot* c) {
       size = 0;
       break;
     }
-    want = size + kChunkBytes;
+    want = size + kParseChunkBytes;
     c->Reserve(want, size);
   }
   c->size = size;

@@ -24,10 +24,40 @@ namespace mpcal::logio {
 /// A line longer than this means the input is not a log (binary junk, or a
 /// file without line ends).
 inline constexpr std::size_t kMaxLineBytes = std::size_t{1} << 19;
-/// The first bytes read to find the layout, and the size of a chunk: large
-/// enough that read(2) calls and per-chunk bookkeeping vanish next to number
-/// parsing, small enough to stay in cache.
+/// The first bytes read to find the layout (and LineReader's first buffer).
 inline constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
+/// The size of a chunk ChunkPipeline parses: large enough that read(2) calls
+/// and per-chunk bookkeeping vanish next to number parsing (a thousand rows),
+/// small enough that the chunks in flight and their parsed rows (about 1.5
+/// times the bytes) stay small beside the rows a short log is read into.
+inline constexpr std::size_t kParseChunkBytes = std::size_t{1} << 16;
+
+/// Bytes in pages of their own (a mapping), given back to the system when
+/// freed. For the head a log's layout is found in: a mebibyte read once, which
+/// from the heap would stay resident, free, beside the rows read after it.
+/// (In the sanitizer builds the bytes come from the heap, whose bounds the
+/// sanitizer checks.)
+class PageBuffer {
+ public:
+  /// \throws std::bad_alloc when no mapping can be made.
+  explicit PageBuffer(std::size_t bytes);
+  ~PageBuffer();
+  PageBuffer(const PageBuffer&) = delete;
+  PageBuffer& operator=(const PageBuffer&) = delete;
+
+  char* data() { return data_; }
+  const char* data() const { return data_; }
+  std::size_t size() const { return size_; }
+  /// Grows to `bytes`, the contents kept.
+  /// \throws std::bad_alloc when no mapping can be made.
+  void Grow(std::size_t bytes);
+  /// Gives the bytes back now; size() is then 0.
+  void Release();
+
+ private:
+  char* data_ = nullptr;
+  std::size_t size_ = 0;
+};
 
 /// "line N: longer than ... KiB" as an Error.
 [[noreturn]] void ThrowLineTooLong(const std::string& source, std::size_t line);
@@ -50,6 +80,9 @@ class LogFile {
   /// `fill` (pipes deliver a little at a time); returns the count. A read
   /// failure sets `*error` (the bytes before it are returned).
   std::size_t Read(char* dst, std::size_t n, bool fill, std::string* error);
+  /// Moves to byte `offset` of a regular file opened by name, to read it
+  /// again from there; false, with nothing done, for standard input.
+  bool Seek(std::uint64_t offset);
 
  private:
   std::string source_;
@@ -81,7 +114,7 @@ class LineReader {
   void Refill(bool fill);
 
   LogFile* file_;
-  std::vector<char> buf_;
+  PageBuffer buf_;
   std::size_t begin_ = 0;  // first unconsumed byte
   std::size_t end_ = 0;    // one past the last byte read
   std::size_t line_number_ = 0;
@@ -117,17 +150,19 @@ struct RowConversion {
   bool index_time = false;      // no time column: rows are numbered
   bool gyro = false;            // gyroscope columns parsed
   std::size_t header_line = 0;  // within the first chunk; 0 for none
+  std::size_t header_end = 0;   // bytes through the header line: the first chunk's least
 };
 
 /// ReadLog is bound by turning text into numbers, so it parses on two
 /// cores: the input is cut into chunks of whole lines, read in file order by
 /// whichever thread is free; each is parsed into its own rows; the calling
 /// thread takes the parsed chunks in file order (Next) and hands each back
-/// (Release). Memory: kChunksInFlight chunks at most.
+/// (Release). Memory: kChunksInFlight chunks of about kParseChunkBytes
+/// at most.
 class ChunkPipeline {
  public:
   /// `first_bytes`: what was read before (the layout's head), from where the
-  /// rows start.
+  /// rows start; not copied whole: it must outlive the pipeline.
   ChunkPipeline(LogFile* file, std::string_view first_bytes, RowConversion conversion);
   ~ChunkPipeline();
   ChunkPipeline(const ChunkPipeline&) = delete;
@@ -148,6 +183,8 @@ class ChunkPipeline {
   struct Slot;
   Slot* Claim(bool wait);
   bool Read(Slot* c);
+  bool TakeFromHead(Slot* c);
+  std::size_t FirstChunkBytes(const Slot* c) const;
   void Parse(Slot* c);
   void ParseLines(Slot* c) const;
   void Finish(Slot* c);
@@ -158,6 +195,7 @@ class ChunkPipeline {
   std::thread helper_;
 
   std::mutex read_mutex_;  // reading: one thread at a time, in file order
+  std::string_view head_;  // the first bytes not yet in a chunk
   std::vector<char> carry_;
   std::uint64_t consumed_ = 0;  // the calling thread's
 

@@ -195,12 +195,11 @@ LogStreamSummary ReadRows(const std::string& path,
                           std::function<void(const Recording&)> consume) {
   ThrowIfInvalid(options);
   logio::LogFile file(path);
-  // Not zeroed first: read(2) writes it.
-  auto head_bytes = std::make_unique_for_overwrite<char[]>(logio::kChunkBytes);
+  logio::PageBuffer head_bytes(logio::kChunkBytes);
   std::string read_error;
   const std::string_view head(
-      head_bytes.get(),
-      file.Read(head_bytes.get(), logio::kChunkBytes, /*fill=*/true, &read_error));
+      head_bytes.data(),
+      file.Read(head_bytes.data(), logio::kChunkBytes, /*fill=*/true, &read_error));
   if (!read_error.empty()) throw Error(ErrorKind::kIo, read_error);
   const logio::DetectedLayout detected = logio::DetectLayout(head,
                                                              file.eof(),
@@ -224,6 +223,11 @@ LogStreamSummary ReadRows(const std::string& path,
       layout.header_line > 0 ? layout.header_line - detected.skipped_lines : 0;
 
   const std::size_t start = std::max(detected.bom_bytes, detected.skipped_bytes);
+  for (std::size_t line = 0; line < conversion.header_line; ++line) {
+    const std::size_t nl = head.find('\n', start + conversion.header_end);
+    conversion.header_end =
+        nl == std::string_view::npos ? head.size() - start : nl + 1 - start;
+  }
   logio::ProgressReporter progress(options.progress, file.size());
   logio::RowSink sink(rec,
                       layout.seconds_per_time_unit,
@@ -231,9 +235,16 @@ LogStreamSummary ReadRows(const std::string& path,
                       detected.skipped_lines,
                       file.size());
   if (consume) sink.StreamTo(std::move(consume));
+  // A file is read again from where the rows start rather than from the
+  // head: held while the whole log is read, the head's mebibyte would sit
+  // beside the rows at the peak. Standard input can only go on from it.
+  std::string_view first_bytes = head.substr(start);
+  if (file.Seek(start)) {
+    first_bytes = {};
+    head_bytes.Release();
+  }
   {
-    logio::ChunkPipeline pipeline(&file, head.substr(start), conversion);
-    head_bytes.reset();
+    logio::ChunkPipeline pipeline(&file, first_bytes, conversion);
     while (const logio::ChunkRows* chunk = pipeline.Next()) {
       sink.Append(*chunk);
       pipeline.Release();

@@ -22,9 +22,10 @@ using ::testing::AllOf;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 
-// A chunk is a mebibyte of text: a piece never holds more rows than fit in
-// one at the log's shortest line.
-constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
+// A chunk is 64 KiB of text (the layout's first mebibyte too is parsed in
+// chunks of that size): a piece never holds more rows than fit in one at the
+// log's shortest line, so the reader's buffers stay small beside the rows.
+constexpr std::size_t kChunkBytes = std::size_t{1} << 16;
 
 // The pieces ReadLogRows hands over, concatenated, with what each call saw.
 struct Streamed {
@@ -200,6 +201,28 @@ TEST(ReadLogRows, LongLogComesInManyBoundedPieces) {
               AllOf(HasSubstr(fmt::format("{} gaps", (rows - 1) / 4001)),
                     HasSubstr("(0.0025 s)"),
                     HasSubstr("largest is 0.5 s")));
+}
+
+TEST(ReadLogRows, FirstMebibyteComesInBoundedPiecesToo) {
+  ScratchDir dir;
+  // 0.9 MB: the whole log lies in the first mebibyte read to find its layout.
+  const Streamed s = ExpectSameAsReadLog(dir, LongLog(12000, 0, 0));
+  constexpr std::size_t kShortestLineBytes = 60;
+  EXPECT_LE(s.largest_piece, kChunkBytes / kShortestLineBytes);
+  EXPECT_GE(s.calls, 12000 * kShortestLineBytes / kChunkBytes);
+}
+
+TEST(ReadLogRows, HeaderAfterMoreThanAChunkOfCommentsIsStillTheHeader) {
+  ScratchDir dir;
+  // 96 KB of comments: the header lies beyond the first chunk's size.
+  std::string log;
+  for (int i = 0; i < 1600; ++i) log += fmt::format("# note {:04d} {:>48}\n", i, "x");
+  log += LongLog(3000, 0, 0);
+  const Streamed s = ExpectSameAsReadLog(dir, log);
+  EXPECT_EQ(s.summary.rows, 3000u);
+  EXPECT_TRUE(s.summary.has_gyro);
+  EXPECT_DOUBLE_EQ(s.rows.time_s.front(), 1000.0);
+  EXPECT_DOUBLE_EQ(s.rows.accel.back().z(), 9.81 + 1e-4 * (2999 % 13));
 }
 
 TEST(ReadLogRows, TimeGoingBackInALaterChunkThrowsAfterTheRowsBefore) {

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <string>
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -432,9 +433,44 @@ TEST(ReadLog, StandardInput) {
   EXPECT_EQ(r.accel[1], Eigen::Vector3d(4, 5, 6));
 }
 
+TEST(ReadLog, StandardInputLongerThanTheHeadGivesTheFilesRows) {
+  ScratchDir dir;
+  // 96 KB of comments before the header, then 1.5 MB of rows: from standard
+  // input the head read for the layout is parsed a chunk at a time, from a
+  // file the rows are read again after it.
+  std::string log;
+  for (int i = 0; i < 1600; ++i) log += fmt::format("# note {:04d} {:>48}\n", i, "x");
+  log += "t,ax,ay,az\n";
+  const int n = 50000;
+  for (int i = 0; i < n; ++i) {
+    log +=
+        fmt::format("{:.3f},{:.5f},{:.5f},{:.5f}\n", 0.01 * i, 1e-5 * i, -2e-5 * i, 9.8);
+  }
+  const std::string path = dir.Write("long_stdin.csv", log);
+  const Recording file = ReadLog(path, {});
+  const int saved = dup(STDIN_FILENO);
+  ASSERT_NE(std::freopen(path.c_str(), "r", stdin), nullptr);
+  Recording piped;
+  std::string error;
+  try {
+    piped = ReadLog("-", {});
+  } catch (const Error& e) {
+    error = e.what();
+  }
+  dup2(saved, STDIN_FILENO);
+  close(saved);
+  EXPECT_EQ(error, "");
+  ASSERT_EQ(file.size(), static_cast<std::size_t>(n));
+  EXPECT_TRUE(piped.time_s == file.time_s);
+  EXPECT_TRUE(piped.accel == file.accel);
+  EXPECT_DOUBLE_EQ(file.time_s.back(), 0.01 * (n - 1));
+  EXPECT_DOUBLE_EQ(file.accel.back().x(), 1e-5 * (n - 1));
+}
+
 TEST(ReadLog, LongLogAcrossManyChunksMatchesItsRows) {
   ScratchDir dir;
-  // ~3 MB: several 1 MiB chunks, so that lines straddle chunk boundaries.
+  // ~3 MB: past the 1 MiB head and over many chunks, so that lines straddle
+  // chunk boundaries.
   std::string log = "# long\ntime,ax,ay,az,extra\n";
   const int n = 60000;
   for (int i = 0; i < n; ++i) {
