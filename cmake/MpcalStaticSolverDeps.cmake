@@ -138,6 +138,4 @@ function(mpcal_link_solver_deps_statically)
   set_property(TARGET Ceres::ceres APPEND PROPERTY INTERFACE_LINK_LIBRARIES ${tail})
   list(LENGTH archives count)
   message(STATUS "mpcal: Ceres's dependencies linked from ${count} static archives")
-  # The footprint is the shipped one: the peak-memory test holds it.
-  set_property(GLOBAL PROPERTY MPCAL_SOLVER_DEPS_STATIC TRUE)
 endfunction()

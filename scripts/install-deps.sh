@@ -32,7 +32,7 @@ develop=(
   libbenchmark-dev
   chromium             # headless rendering of the HTML report in tests
   python3              # checks the rendered report's DOM and screenshot
-  time                 # GNU time: peak memory in the bench and a CLI test
+  time                 # GNU time: peak memory and CPU in the benches (bench/speed_bench.sh)
   python3-numpy        # bench/independent generators (gen_imu_session.py, gen_still.py)
   python3-jsonschema   # tests/io/schema_test.py: the written files against docs/schemas/
   clang                # libFuzzer targets (make fuzz)

@@ -10,20 +10,6 @@ mpcal_cli_test(calibrate_xsens_counts EXIT 0
   ARGS calibrate ${_xsens} --units counts --gravity 9.81744 -o calib.json)
 # The split-half check on the real recording: both splits possible, the
 # halves consistent, and stored in the file.
-# The same job's peak memory stays under imu_tk's for it, 12.7 MiB
-# (bench/speed_bench.sh): the median of five runs, in KiB. Only where the
-# footprint is the shipped one: a Release build with Ceres's dependencies
-# linked statically (not the sanitizer or fuzzing builds).
-get_property(_solver_deps_static GLOBAL PROPERTY MPCAL_SOLVER_DEPS_STATIC)
-if(_solver_deps_static AND CMAKE_BUILD_TYPE STREQUAL "Release")
-  add_test(NAME cli.calibrate_xsens_peak_memory_under_imu_tk
-    COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/peak_rss.sh 13005 5
-            ${CMAKE_CURRENT_BINARY_DIR}/calibrate_xsens_peak_memory_under_imu_tk
-            -- $<TARGET_FILE:mpcal_cli> calibrate ${_xsens} --units counts
-            --gravity 9.81744 -o calib.json)
-  set_tests_properties(cli.calibrate_xsens_peak_memory_under_imu_tk
-    PROPERTIES LABELS cli RUN_SERIAL TRUE)
-endif()
 mpcal_cli_test(calibrate_xsens_split_half EXIT 0
   MATCH "split-half \\(by time, 19 \\+ 19 positions\\): RMS z [0-9.]+ \\(honest 1σ: 1 ± 0.24\\); consistent"
   ARGS calibrate ${_xsens} --units counts --gravity 9.81744 -o calib.json)
