@@ -16,6 +16,10 @@ packages=(
   nlohmann-json3-dev   # calibration and result files
   libfmt-dev           # tables and messages
   libfast-float-dev    # parsing numbers from logs
+  libsqlite3-dev       # ROS 2 bags (*.db3)
+  libzstd-dev          # MCAP zstd chunks
+  liblz4-dev           # ROS 1 and MCAP lz4 chunks (the LZ4 frame format)
+  libbz2-dev           # ROS 1 bz2 chunks
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev
   chromium             # headless rendering of the HTML report in tests
