@@ -1,11 +1,12 @@
 // Private to src/bag/: the records of a ROS 1 bag, format 2.0.
 //
 // Layout from the format's reference reader, rosbag/bag.py in Debian's
-// python3-rosbag 1.15.15 (/usr/lib/python3/dist-packages/rosbag/bag.py):
-// op codes at lines 1771-1777, the record header as length-prefixed
-// "name=value" fields at 2013-2055, the bag header record at 2706-2722,
-// connection records at 2724-2738, chunk info records at 2740-2762 and the
-// chunk header (compression, size) at 1722-1729; wiki.ros.org/Bags/Format/2.0.
+// python3-rosbag 1.15.15+ds-2 (/usr/lib/python3/dist-packages/rosbag/bag.py):
+// op codes at lines 1771-1777; a record header as length-prefixed
+// "name=value" fields at 2013-2052; the bag header record at 2705-2721;
+// connection records at 2723-2737; chunk info records at 2739-2764; the chunk
+// header (compression, size) at 2766-2776 and as written at 1721-1728; index
+// data records at 2778. Also wiki.ros.org/Bags/Format/2.0.
 #pragma once
 
 #include <cstdint>

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -294,6 +295,37 @@ TEST(ReadImuMessages, McapChunkCrcIsChecked) {
   EXPECT_THAT(
       Error([&] { ReadAll(dir.Write("crc.mcap", mcap), w); }),
       ::testing::AllOf(HasSubstr("crc.mcap: chunk at byte"), HasSubstr("CRC-32")));
+}
+
+// A chunk that claims more than the cap is refused before anything is
+// allocated for it.
+TEST(ReadImuMessages, AChunkSizeAboveTheCapIsRefused) {
+  ScratchDir dir;
+  std::string bag = ReadFile(Bag("imu_lz4.bag"));
+  const std::size_t chunk = FindNth(bag, "compression=lz4", 3);
+  const std::size_t size_at = bag.find("size=", chunk) + 5;
+  bag.replace(size_at, 4, "\xff\xff\xff\xff");
+  std::vector<std::string> w;
+  EXPECT_THAT(Error([&] { ReadAll(dir.Write("huge.bag", bag), w); }),
+              ::testing::AllOf(HasSubstr("chunk at byte"), HasSubstr("above the cap")));
+}
+
+// The fuzzer's seed corpus, replayed: each file is read or refused with an
+// mpcal::Error, nothing else.
+TEST(ReadImuMessages, FuzzSeedsAreReadOrRefused) {
+  const std::filesystem::path seeds =
+      std::filesystem::path(MPCAL_TEST_DATA_DIR) / ".." / "fuzz" / "bag_reader";
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(seeds)) {
+    std::vector<std::string> w;
+    try {
+      InspectBag(entry.path().string());
+      ReadAll(entry.path().string(), w);
+    } catch (const mpcal::Error&) {
+    }
+    ++files;
+  }
+  EXPECT_GE(files, 8);
 }
 
 }  // namespace
