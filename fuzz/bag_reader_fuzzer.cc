@@ -61,7 +61,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::vector<std::string> warnings;
     std::size_t messages = 0;
     mpcal::ReadImuMessages(
-        path, "/imu/data",
+        path,
+        "/imu/data",
         [&](std::span<const mpcal::ImuMessage> batch) {
           Check(!batch.empty(), "a batch holds messages");
           messages += batch.size();

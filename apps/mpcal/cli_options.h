@@ -16,7 +16,7 @@
 
 namespace mpcal::cli {
 
-/// --columns, --units, --time-unit, --rate, --gyro-units.
+/// --columns, --units, --time-unit, --rate, --gyro-units, --topic.
 void AddLogOptions(CLI::App& app, LogOptions& options);
 
 /// --gravity | --latitude [--height]: the local magnitude of gravity.

@@ -84,6 +84,11 @@ inline constexpr std::uint64_t kBagMaxFieldBytes = 1ull << 20;    ///< a header,
 ///   (the message names the magic bytes found).
 BagFormat DetectBagFormat(const std::string& path);
 
+/// True when DetectBagFormat would name a format for `path`; false for
+/// anything else (a text log, standard input "-", a missing file). Never
+/// throws.
+bool IsBag(const std::string& path);
+
 /// The topics of a recording, with their types and message counts, from its
 /// index (ROS 1 connection and chunk-info records, MCAP summary section) or,
 /// where there is none, from one pass over the records.

@@ -75,6 +75,16 @@ BagFormat DetectBagFormat(const std::string& path) {
                   Shown(head) + "')");
 }
 
+bool IsBag(const std::string& path) {
+  if (path == "-") return false;
+  try {
+    DetectBagFormat(path);
+    return true;
+  } catch (const Error&) {
+    return false;
+  }
+}
+
 BagSummary InspectBag(const std::string& path) {
   switch (DetectBagFormat(path)) {
     case BagFormat::kRos1:

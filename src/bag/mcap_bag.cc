@@ -236,6 +236,7 @@ void ReadMcapImu(const std::string& path,
   for (const auto& [id, c] : seen) take(c);
   const auto topics = [&] {
     std::vector<BagTopic> list;
+    list.reserve(seen.size());
     for (const auto& [id, c] : seen) {
       list.push_back({c.topic, TypeOf(opened, schemas, c), c.message_encoding, 0, 0, 0});
     }

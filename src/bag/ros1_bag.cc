@@ -240,7 +240,10 @@ void ReadRos1Imu(const std::string& path,
   std::map<std::uint32_t, Connection> seen = opened.index.connections;
   std::set<std::uint32_t> ids;
   for (const auto& [id, c] : seen) {
-    if (c.topic == topic) CheckImu(path, c), ids.insert(id);
+    if (c.topic == topic) {
+      CheckImu(path, c);
+      ids.insert(id);
+    }
   }
   if (opened.index.usable && ids.empty()) {
     throw Error(
@@ -259,7 +262,10 @@ void ReadRos1Imu(const std::string& path,
     return false;
   };
   v.on_connection = [&](const Connection& c) {
-    if (c.topic == topic) CheckImu(path, c), ids.insert(c.id);
+    if (c.topic == topic) {
+      CheckImu(path, c);
+      ids.insert(c.id);
+    }
     seen.insert_or_assign(c.id, c);
   };
   v.on_message = [&](const Record& r, std::string_view data) {

@@ -14,7 +14,12 @@ the row's doubles as they are); a std_msgs/msg/String on /chatter precedes
 every tenth row.
 
   python3 make_ros2_db3.py      (in this directory; no ROS needed)
+
+With --csv FILE --out DIR [--in-order] it writes DIR from another session
+(the command-line tests make a bag of a whole calibration session this way;
+--in-order leaves every stamp in order).
 """
+import argparse
 import csv
 import os
 import shutil
@@ -70,12 +75,18 @@ def text(s):
 
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
-    with open(os.path.join(here, "session.csv"), newline="") as f:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--csv", default=os.path.join(here, "session.csv"))
+    parser.add_argument("--out", default=os.path.join(here, "imu_ros2"))
+    parser.add_argument("--in-order", action="store_true")
+    args = parser.parse_args()
+    with open(args.csv, newline="") as f:
         rows = list(csv.DictReader(f))
-    bag = os.path.join(here, "imu_ros2")
+    bag = args.out
     shutil.rmtree(bag, ignore_errors=True)
     os.makedirs(bag)
-    db = sqlite3.connect(os.path.join(bag, "imu_ros2_0.db3"))
+    name = os.path.basename(os.path.normpath(bag))
+    db = sqlite3.connect(os.path.join(bag, name + "_0.db3"))
     db.executescript("""
       CREATE TABLE schema(schema_version INTEGER PRIMARY KEY, ros_distro TEXT NOT NULL);
       CREATE TABLE metadata(id INTEGER PRIMARY KEY, metadata_version INTEGER NOT NULL,
@@ -92,8 +103,9 @@ def main():
       INSERT INTO topics VALUES (2, '/imu/data', 'sensor_msgs/msg/Imu', 'cdr', '', '');
     """)
     stamps = [EPOCH_NS + int(round(float(r["t"]) * 1e9)) for r in rows]
-    a, b = SWAPPED
-    stamps[a], stamps[b] = stamps[b], stamps[a]
+    if not args.in_order:
+        a, b = SWAPPED
+        stamps[a], stamps[b] = stamps[b], stamps[a]
     for i, row in enumerate(rows):
         receive = EPOCH_NS + int(round(float(row["t"]) * 1e9)) + LATENCY_NS
         if i % 10 == 0:
@@ -106,7 +118,7 @@ def main():
     db.close()
     with open(os.path.join(bag, "metadata.yaml"), "w") as f:
         f.write("rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: sqlite3\n"
-                "  relative_file_paths:\n    - imu_ros2_0.db3\n")
+                "  relative_file_paths:\n    - %s_0.db3\n" % name)
 
 
 if __name__ == "__main__":

@@ -1,0 +1,107 @@
+// A recording read as a log (ReadLog, ReadLogRows): the row sink's rules
+// apply to its messages, and the options that describe text logs are refused.
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "mpcal/error.h"
+#include "mpcal/log_reader.h"
+#include "test_util.h"
+
+namespace mpcal {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string Bag(const std::string& name) { return testing::TestDataPath("bags/" + name); }
+
+// The fixtures' header stamps of rows 100 and 101 are swapped: as a log, the
+// message after them goes back in time, and the error counts messages.
+TEST(ReadLogOfABag, StampsOutOfOrderAreTimeGoingBack) {
+  for (const char* file : {"imu_ros2", "imu_lz4.bag", "imu_cdr_zstd.mcap"}) {
+    try {
+      ReadLog(Bag(file), LogOptions{});
+      ADD_FAILURE() << file << " was read";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::kTime);
+      EXPECT_THAT(e.what(),
+                  HasSubstr(":102: time goes back: 5 s after 5.05 s on message 101"))
+          << file;
+    }
+  }
+}
+
+TEST(ReadLogOfABag, RowsBeforeTheErrorAreHandedOverInSiUnits) {
+  std::vector<double> times;
+  std::vector<Eigen::Vector3d> accel;
+  try {
+    ReadLogRows(Bag("imu_ros2"), LogOptions{}, [&](const Recording& rows) {
+      EXPECT_EQ(rows.units, AccelUnits::kMps2);
+      EXPECT_EQ(rows.gyro_radps.size(), rows.size());
+      times.insert(times.end(), rows.time_s.begin(), rows.time_s.end());
+      accel.insert(accel.end(), rows.accel.begin(), rows.accel.end());
+    });
+  } catch (const Error&) {
+  }
+  ASSERT_EQ(times.size(), 101u);  // messages 1..101, in time order
+  EXPECT_EQ(times[0], 0.0);
+  EXPECT_NEAR(times[100], 5.05, 1e-12);
+  // session.csv's first row.
+  EXPECT_EQ(accel[0],
+            Eigen::Vector3d(-0.7171451816101523, 0.14835904307160247, 9.624971347565719));
+}
+
+TEST(ReadLogOfABag, TextLogOptionsAreRefusedWithTheOption) {
+  LogOptions g;
+  g.units = AccelUnits::kG;
+  LogOptions rate;
+  rate.rate_hz = 100.0;
+  for (const LogOptions& o : {g, rate}) {
+    try {
+      ReadLog(Bag("imu_ros2"), o);
+      ADD_FAILURE() << "read";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::kOption);
+      EXPECT_THAT(e.what(), HasSubstr("are for text logs only"));
+    }
+  }
+}
+
+TEST(ReadLogOfABag, ATopicOfAnotherTypeIsRefused) {
+  LogOptions o;
+  o.topic = "/chatter";
+  EXPECT_THROW(
+      {
+        try {
+          ReadLog(Bag("imu_none.bag"), o);
+        } catch (const Error& e) {
+          EXPECT_THAT(e.what(), HasSubstr("std_msgs/String"));
+          throw;
+        }
+      },
+      Error);
+}
+
+TEST(ReadLogOfABag, ARecordingWithNoImuTopicSaysWhatItHolds) {
+  EXPECT_THROW(
+      {
+        try {
+          ReadLog(Bag("empty.bag"), LogOptions{});
+        } catch (const Error& e) {
+          EXPECT_THAT(e.what(),
+                      HasSubstr("empty.bag: no sensor_msgs/Imu topic; the "
+                                "recording holds none"));
+          throw;
+        }
+      },
+      Error);
+}
+
+TEST(ReadLogOfABag, IsNotRewrittenLineByLine) {
+  EXPECT_THROW(LogScanner(Bag("imu_lz4.bag"), LogOptions{}), Error);
+}
+
+}  // namespace
+}  // namespace mpcal
