@@ -26,7 +26,8 @@ namespace mpcal {
 enum class BagFormat {
   kRos1,        ///< ROS 1 bag, format 2.0 (`#ROSBAG V2.0`)
   kMcap,        ///< MCAP (`\x89MCAP0\r\n`), ROS 1 or ROS 2 (CDR) messages
-  kRos2Sqlite,  ///< ROS 2 bag: a directory with metadata.yaml and *.db3 files
+  kRos2Sqlite,  ///< ROS 2 bag: a directory with metadata.yaml and its *.db3
+                ///< files (or *.mcap files), or a lone *.db3 file
 };
 /// "ros1", "mcap" or "ros2-sqlite".
 std::string_view ToString(BagFormat format);

@@ -1,5 +1,6 @@
 // A recording read as a log (ReadLog, ReadLogRows): the row sink's rules
 // apply to its messages, and the options that describe text logs are refused.
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -97,6 +98,29 @@ TEST(ReadLogOfABag, ARecordingWithNoImuTopicSaysWhatItHolds) {
         }
       },
       Error);
+}
+
+// Two sensor_msgs/Imu topics: the reader does not guess, it names both and
+// points at LogOptions::topic. (The copy's /chatter type is rewritten in
+// place: "std_msgs/msg/String" and "sensor_msgs/msg/Imu" have one length.)
+TEST(ReadLogOfABag, SeveralImuTopicsNeedTheTopicOption) {
+  testing::ScratchDir dir;
+  std::filesystem::create_directory(dir.path() / "two");
+  std::string db = testing::ReadFile(Bag("imu_ros2/imu_ros2_0.db3"));
+  const std::size_t at = db.find("std_msgs/msg/String");
+  ASSERT_NE(at, std::string::npos);
+  db.replace(at, 19, "sensor_msgs/msg/Imu");
+  dir.Write("two/two_0.db3", db);
+  dir.Write("two/metadata.yaml", "rosbag2_bagfile_information:\n");
+  try {
+    ReadLog(dir.Path("two"), LogOptions{});
+    ADD_FAILURE() << "read";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kOption);
+    EXPECT_THAT(e.what(), HasSubstr("2 sensor_msgs/Imu topics (/chatter, /imu/data)"));
+    ASSERT_EQ(e.advice().settings.size(), 1u);
+    EXPECT_EQ(e.advice().settings[0].option, Option::kLogTopic);
+  }
 }
 
 TEST(ReadLogOfABag, IsNotRewrittenLineByLine) {

@@ -157,6 +157,21 @@ void ExpectTopics(const BagSummary& s,
   }
 }
 
+// rosbag2 also stores MCAP files in its directories.
+TEST(ReadImuMessages, Ros2DirectoryOfMcapFiles) {
+  ScratchDir dir;
+  std::filesystem::create_directory(dir.path() / "bag");
+  dir.Write("bag/bag_0.mcap", ReadFile(Bag("imu_cdr_be_lz4.mcap")));
+  dir.Write("bag/metadata.yaml", "rosbag2_bagfile_information:\n");
+  EXPECT_EQ(DetectBagFormat(dir.Path("bag")), BagFormat::kRos2Sqlite);
+  std::vector<std::string> w;
+  const auto messages = ReadAll(dir.Path("bag"), w);
+  ASSERT_EQ(messages.size(), kRows);
+  ExpectSessionPrefix(messages);
+  ExpectTopics(
+      InspectBag(dir.Path("bag")), "sensor_msgs/msg/Imu", "std_msgs/msg/String", "cdr");
+}
+
 TEST(InspectBag, Ros1TopicsCountsAndCompressionFromTheIndex) {
   const BagSummary s = InspectBag(Bag("imu_bz2.bag"));
   EXPECT_EQ(s.format, BagFormat::kRos1);
