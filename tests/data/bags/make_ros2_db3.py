@@ -7,11 +7,11 @@ end of that header; a string is a u32 length that counts its NUL, the bytes,
 the NUL.
 
 The tables are those ros2/rosbag2 creates (rosbag2_storage_sqlite3,
-sqlite_storage.cpp at 25304dd, SqliteStorage::initialize, lines 434-480). Each CSV row becomes a
-sensor_msgs/msg/Imu on /imu/data exactly as make_ros1_bags.py writes it
-(header stamp kEpoch + t with rows 100 and 101 swapped, received 2 ms later,
-the row's doubles as they are); a std_msgs/msg/String on /chatter precedes
-every tenth row.
+sqlite_storage.cpp at 25304dd, SqliteStorage::initialize, lines 434-480).
+Each CSV row becomes a sensor_msgs/msg/Imu on /imu/data exactly as
+make_ros1_bags.py writes it (header stamp kEpoch + t with rows 100 and 101
+swapped, received 2 ms later, the row's doubles as they are); a
+std_msgs/msg/String on /chatter precedes every tenth row.
 
   python3 make_ros2_db3.py      (in this directory; no ROS needed)
 
