@@ -301,6 +301,23 @@ TEST(ReadImuMessages, SkipsChunksWithoutTheTopic) {
               HasSubstr("chunk at byte"));
 }
 
+TEST(ReadImuMessages, McapUnknownCompressionIsNamed) {
+  ScratchDir dir;
+  std::string mcap = ReadFile(Bag("imu_cdr_zstd.mcap"));
+  const std::string zstd("\x04\0\0\0zstd", 8);  // the length-prefixed name
+  int patched = 0;
+  for (std::size_t at = mcap.find(zstd); at != std::string::npos;
+       at = mcap.find(zstd, at + 1)) {
+    mcap.replace(at + 4, 4, "zsth");
+    ++patched;
+  }
+  ASSERT_GT(patched, 1);
+  std::vector<std::string> w;
+  EXPECT_THAT(Error([&] { ReadAll(dir.Write("zsth.mcap", mcap), w); }),
+              ::testing::AllOf(HasSubstr("zsth.mcap: chunk at byte"),
+                               HasSubstr("unknown chunk compression 'zsth'")));
+}
+
 TEST(ReadImuMessages, McapChunkCrcIsChecked) {
   ScratchDir dir;
   std::string mcap = ReadFile(Bag("imu_ros1.mcap"));  // chunks stored, CRC written
