@@ -68,6 +68,11 @@ struct ImuMessage {
   std::int64_t receive_ns = 0;
   Eigen::Vector3d linear_acceleration_mps2 = Eigen::Vector3d::Zero();
   Eigen::Vector3d angular_velocity_radps = Eigen::Vector3d::Zero();
+  /// False when the message says the quantity is not measured: the first
+  /// element of its covariance is -1, as sensor_msgs/Imu's definition asks
+  /// of drivers; the vector is then whatever the driver left there.
+  bool has_linear_acceleration = true;
+  bool has_angular_velocity = true;
 };
 
 /// Receives the messages, a batch at a time in file order. The span is valid

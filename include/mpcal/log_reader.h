@@ -15,8 +15,9 @@
 /// read as a log by ReadLog and ReadLogRows: each sensor_msgs/Imu message of
 /// LogOptions::topic is a row, its time the header stamp in seconds from the
 /// first message's, the accelerometer in m/s² and the gyroscope in rad/s as
-/// ROS defines them; the rules on time order, duplicates and gaps are the
-/// text logs' (a "line" is then a message, counted from 1).
+/// ROS defines them (no gyroscope when the first message marks its angular
+/// velocity as not measured: covariance[0] = -1); the rules on time order, duplicates and
+/// gaps are the text logs' (a "line" is then a message, counted from 1).
 ///
 /// Three entry points: ReadLog reads a whole log into a Recording (for
 /// calibration); ReadLogRows reads it the same way but hands the rows over

@@ -23,12 +23,19 @@ Eigen::Vector3d Vec3(ByteCursor& c, bool big_endian) {
 
 // Orientation, covariances, and the two vectors the calibration needs; the
 // caller has read the header and aligned the cursor.
+// A covariance whose first element is -1 marks the quantity as not measured.
+bool Given(ByteCursor& c, bool big_endian, const char* what) {
+  const double first = c.Read<double>(what, big_endian);
+  c.Skip(8 * 8, what);
+  return first != -1.0;
+}
+
 void ReadBody(ByteCursor& c, bool big_endian, ImuMessage& m) {
   c.Skip(8 * (4 + 9), "orientation and its covariance");
   m.angular_velocity_radps = Vec3(c, big_endian);
-  c.Skip(8 * 9, "angular_velocity_covariance");
+  m.has_angular_velocity = Given(c, big_endian, "angular_velocity_covariance");
   m.linear_acceleration_mps2 = Vec3(c, big_endian);
-  c.Skip(8 * 9, "linear_acceleration_covariance");
+  m.has_linear_acceleration = Given(c, big_endian, "linear_acceleration_covariance");
   if (!c.empty()) {
     throw DataError("a sensor_msgs/Imu message with " + std::to_string(c.remaining()) +
                     " bytes after its last field");

@@ -73,6 +73,7 @@ LogStreamSummary ReadBagRows(const std::string& path,
   if (consume) sink.StreamTo(std::move(consume));
   std::int64_t first_ns = 0;
   bool first = true;
+  bool gyro = true;  // as the first message says, for every row
   ChunkRows rows;
   std::string lines;  // one line per message, for the sink's message numbers
   std::vector<std::string> warnings;
@@ -82,10 +83,18 @@ LogStreamSummary ReadBagRows(const std::string& path,
       [&](std::span<const ImuMessage> batch) {
         rows.time.clear(), rows.accel.clear(), rows.gyro.clear();
         for (const ImuMessage& m : batch) {
-          if (first) first_ns = m.stamp_ns, first = false;
+          if (first) {
+            if (!m.has_linear_acceleration) {
+              throw Error(ErrorKind::kInput,
+                          path + ": topic '" + topic +
+                              "' gives no linear acceleration (its covariance starts "
+                              "with -1: not measured)");
+            }
+            first_ns = m.stamp_ns, first = false, gyro = m.has_angular_velocity;
+          }
           rows.time.push_back(static_cast<double>(m.stamp_ns - first_ns) / kNsPerS);
           rows.accel.push_back(m.linear_acceleration_mps2);
-          rows.gyro.push_back(m.angular_velocity_radps);
+          if (gyro) rows.gyro.push_back(m.angular_velocity_radps);
         }
         lines.assign(2 * batch.size(), 'm');
         for (std::size_t i = 1; i < lines.size(); i += 2) lines[i] = '\n';
@@ -104,7 +113,7 @@ LogStreamSummary ReadBagRows(const std::string& path,
   summary.rows = sink.rows();
   summary.first_time_s = sink.first_time_s();
   summary.last_time_s = sink.last_time_s();
-  summary.has_gyro = true;
+  summary.has_gyro = gyro && summary.rows > 0;
   return summary;
 }
 

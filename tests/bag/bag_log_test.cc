@@ -54,6 +54,35 @@ TEST(ReadLogOfABag, RowsBeforeTheErrorAreHandedOverInSiUnits) {
             Eigen::Vector3d(-0.7171451816101523, 0.14835904307160247, 9.624971347565719));
 }
 
+// Each message of the copy marks its angular velocity as not measured
+// (angular_velocity_covariance[0] = -1, 128 bytes after the frame id: 13
+// doubles of orientation and its covariance, 3 of angular velocity); the
+// bag then has no gyroscope, not a gyroscope reading zero.
+TEST(ReadLogOfABag, AngularVelocityNotMeasuredGivesNoGyroscope) {
+  testing::ScratchDir dir;
+  std::string bag = testing::ReadFile(Bag("imu_none.bag"));  // chunks stored
+  const std::string frame("\x08\0\0\0imu_link", 12);
+  const double minus_one = -1.0;
+  int patched = 0;
+  for (std::size_t at = bag.find(frame); at != std::string::npos;
+       at = bag.find(frame, at + 1)) {
+    bag.replace(at + 12 + 128, 8, reinterpret_cast<const char*>(&minus_one), 8);
+    ++patched;
+  }
+  ASSERT_EQ(patched, 380);
+  std::size_t rows = 0;
+  LogStreamSummary summary;
+  try {
+    ReadLogRows(dir.Write("no_gyro.bag", bag), LogOptions{}, [&](const Recording& r) {
+      EXPECT_TRUE(r.gyro_radps.empty());
+      rows += r.size();
+    });
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kTime);  // the swapped stamps, as above
+  }
+  EXPECT_EQ(rows, 101u);
+}
+
 TEST(ReadLogOfABag, TextLogOptionsAreRefusedWithTheOption) {
   LogOptions g;
   g.units = AccelUnits::kG;
