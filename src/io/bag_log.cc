@@ -57,6 +57,13 @@ void RefuseTextOptions(const std::string& path, const LogOptions& options) {
   }
 }
 
+[[noreturn]] void ThrowNoAcceleration(const std::string& path, const std::string& topic) {
+  throw Error(ErrorKind::kInput,
+              path + ": topic '" + topic +
+                  "' gives no linear acceleration (its covariance starts with -1: not "
+                  "measured)");
+}
+
 }  // namespace
 
 LogStreamSummary ReadBagRows(const std::string& path,
@@ -84,12 +91,7 @@ LogStreamSummary ReadBagRows(const std::string& path,
         rows.time.clear(), rows.accel.clear(), rows.gyro.clear();
         for (const ImuMessage& m : batch) {
           if (first) {
-            if (!m.has_linear_acceleration) {
-              throw Error(ErrorKind::kInput,
-                          path + ": topic '" + topic +
-                              "' gives no linear acceleration (its covariance starts "
-                              "with -1: not measured)");
-            }
+            if (!m.has_linear_acceleration) ThrowNoAcceleration(path, topic);
             first_ns = m.stamp_ns, first = false, gyro = m.has_angular_velocity;
           }
           rows.time.push_back(static_cast<double>(m.stamp_ns - first_ns) / kNsPerS);
