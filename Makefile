@@ -1,28 +1,53 @@
 # A thin shell over CMake. On a fresh Debian machine `make demo` and
 # `make test` are all the set-up there is: both install missing packages
-# first (scripts/install-deps.sh), configure, and build.
-BUILD      ?= build
-JOBS       ?= $(shell nproc)
-CMAKE_ARGS ?=
+# first (scripts/install-deps.sh: `make demo` only what the library and the
+# command need), configure, and build.
+BUILD         ?= build
+BUILD_PACKAGE ?= build-package
+JOBS          ?= $(shell nproc)
+CMAKE_ARGS    ?=
 
-.PHONY: all deps configure build demo test bench fuzz test-sanitize install clean format lint readme
+WITH_TESTS    = -DMPCAL_BUILD_TESTS=ON -DMPCAL_BUILD_BENCH=ON -DMPCAL_BUILD_EXAMPLES=ON
+WITHOUT_TESTS = -DMPCAL_BUILD_TESTS=OFF -DMPCAL_BUILD_BENCH=OFF -DMPCAL_BUILD_EXAMPLES=OFF
+
+.PHONY: all deps deps-demo deps-package configure configure-demo build demo test bench fuzz \
+	test-sanitize install package clean format lint readme
 
 all: build
 
 deps:
-	@bash scripts/install-deps.sh
+	@bash scripts/install-deps.sh all
 
-$(BUILD)/CMakeCache.txt: | deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_ARGS)
+deps-demo:
+	@bash scripts/install-deps.sh demo
 
-configure: deps $(BUILD)/CMakeCache.txt
+deps-package:
+	@bash scripts/install-deps.sh package
+
+# A tree configured by `make demo` (without the tests, whose packages it does
+# not install) gets them turned on; any other is configured once, and CMake
+# reconfigures itself when a CMakeLists.txt changes.
+configure: deps
+	@if [ ! -f $(BUILD)/CMakeCache.txt ] || \
+	    grep -q '^MPCAL_BUILD_TESTS:BOOL=OFF$$' $(BUILD)/CMakeCache.txt; then \
+	  echo cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(WITH_TESTS) $(CMAKE_ARGS); \
+	  cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(WITH_TESTS) $(CMAKE_ARGS); \
+	fi
+
+# A fresh tree for the demo leaves out the tests, benches and examples, so
+# that GoogleTest and the benchmark library need not be installed.
+configure-demo: deps-demo
+	@if [ ! -f $(BUILD)/CMakeCache.txt ]; then \
+	  echo cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(WITHOUT_TESTS) $(CMAKE_ARGS); \
+	  cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(WITHOUT_TESTS) $(CMAKE_ARGS); \
+	fi
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
 # The demo needs only the library and the command, not the test suite, so a
 # newcomer sees a result as soon as those are compiled.
-demo: configure
+demo: configure-demo
 	cmake --build $(BUILD) -j $(JOBS) --target mpcal_cli
 	$(BUILD)/mpcal demo
 
@@ -55,6 +80,14 @@ readme: build
 install: build
 	cmake --install $(BUILD)
 
+# A Debian package, build-package/mpcal_<version>_<arch>.deb, of what
+# `make install` installs, built apart (installed under /usr, no tests) by
+# CPack (cmake/MpcalPackage.cmake); `sudo apt install ./build-package/mpcal_*.deb`.
+package: deps-package
+	cmake -S . -B $(BUILD_PACKAGE) -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX=/usr \
+	  $(WITHOUT_TESTS) $(CMAKE_ARGS)
+	cmake --build $(BUILD_PACKAGE) -j $(JOBS) --target package
+
 format:
 	clang-format -i $$(git ls-files '*.h' '*.cc')
 
@@ -63,4 +96,4 @@ lint: configure
 	bash scripts/lint.sh $(BUILD)
 
 clean:
-	rm -rf $(BUILD) build-sanitize build-fuzz
+	rm -rf $(BUILD) $(BUILD_PACKAGE) build-sanitize build-fuzz

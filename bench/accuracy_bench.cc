@@ -8,7 +8,7 @@
 //
 // The split-half check widens every 1σ of a session whose two
 // halves disagree beyond chance: by design in 1 % of honest sessions, each
-// by at least 1.55 (METHOD.md §9), and in every session the model does not
+// by at least 1.55 (docs/method.md §9), and in every session the model does not
 // fit (a drift the test missed). Those sessions are counted apart: the
 // 0.5-2× range is the bar of the sessions the check left alone, the count
 // of widened honest sessions is held to the check's significance, and the

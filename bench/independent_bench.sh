@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # mpcal's estimates and their 1σ on sessions that its own simulator did not
 # make: bench/independent/gen_session.py, written in plain Python from the
-# error model (METHOD.md §2) and the README's conventions, with hand turns,
+# error model (docs/method.md §2) and the README's conventions, with hand turns,
 # tremor, bumps, placement wobble, coloured noise and 14 logger formats in g,
 # m/s² or raw counts. Per parameter the RMS of z = (estimate − truth)/σ over
 # 60 sessions; PASS when every session ran and z over all parameters has an

@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
-# Installs the Debian packages mpcal needs to build, test and benchmark.
-# Idempotent and non-interactive: it installs only what is missing, and runs
-# `apt-get update` first only when there is something to install. When not
-# root it prints the apt-get command instead of running it.
+# Installs the Debian packages mpcal needs. Idempotent and non-interactive:
+# it installs only what is missing, and runs `apt-get update` first only when
+# there is something to install. When not root it prints the apt-get command
+# instead of running it.
 #
-#   scripts/install-deps.sh            build, test, bench and fuzz dependencies
+#   scripts/install-deps.sh demo      building the library and the command, and running them
+#   scripts/install-deps.sh package   that, and what `make package` adds (dpkg-shlibdeps)
+#   scripts/install-deps.sh [all]     that, and what tests, benches, fuzzing and CI add
 set -euo pipefail
 
-packages=(
+# The library and the command: what `make demo` builds.
+demo=(
   build-essential cmake pkg-config
   libeigen3-dev        # matrices, the error model
   libceres-dev         # nonlinear least squares, autodiff, covariance
@@ -20,15 +23,36 @@ packages=(
   libzstd-dev          # MCAP zstd chunks
   liblz4-dev           # ROS 1 and MCAP lz4 chunks (the LZ4 frame format)
   libbz2-dev           # ROS 1 bz2 chunks
+)
+# The Debian package (cmake/MpcalPackage.cmake).
+package=(
+  dpkg-dev             # dpkg-shlibdeps: the package's Depends from the binary
+  file                 # CPack's DEB generator finds the binaries to give dpkg-shlibdeps
+)
+# Tests, benches, fuzzing and CI.
+develop=(
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev
   chromium             # headless rendering of the HTML report in tests
   python3              # checks the rendered report's DOM and screenshot
   python3-numpy        # bench/independent generators (gen_imu_session.py, gen_still.py)
+  python3-jsonschema   # tests/io/schema_test.py: the written files against docs/schemas/
   clang                # libFuzzer targets (make fuzz)
   clang-format         # the code's layout, checked by scripts/lint.sh (.ci/run)
   clang-tidy           # bug-prone patterns and function size, scripts/lint.sh
+  man-db groff-base    # the man pages rendered without a warning (tests/cli/man_pages.sh)
+  zsh                  # the zsh completion checked (tests/cli/completion_zsh.zsh)
 )
+
+case ${1:-all} in
+  demo) packages=("${demo[@]}") ;;
+  package) packages=("${demo[@]}" "${package[@]}") ;;
+  all) packages=("${demo[@]}" "${package[@]}" "${develop[@]}") ;;
+  *)
+    echo "mpcal: install-deps.sh: unknown set '$1'; give demo, package or all" >&2
+    exit 2
+    ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <exception>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -19,6 +20,8 @@
 #include "command.h"
 #include "explain.h"
 #include "mpcal/error.h"
+#include "reference.h"
+#include "version.h"
 
 namespace {
 
@@ -118,7 +121,7 @@ int Run(int argc, char** argv) {
       "Hold the sensor still in ~26 orientations; gravity's magnitude is the only "
       "reference.",
       "mpcal"};
-  app.set_version_flag("--version", std::string("mpcal ") + MPCAL_VERSION);
+  app.set_version_flag("--version", mpcal::cli::VersionLine());
   app.require_subcommand(1);
   app.footer("Run 'mpcal SUBCOMMAND --help' for the options and an example of each.");
   mpcal::cli::AddCalibrateCommand(app);
@@ -155,6 +158,11 @@ int Run(int argc, char** argv) {
   }
 
   try {
+    // Not a flag --help lists: the build writes the man pages and the
+    // completion with it (apps/mpcal/CMakeLists.txt).
+    if (std::string_view(argv[1]) == "--generate") {
+      return mpcal::cli::Generate(app, std::vector<std::string>(argv + 2, argv + argc));
+    }
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

@@ -284,7 +284,7 @@ void Run(const SimulateStaticFlags& f) {
 
 void AddOutputOptions(CLI::App* app, SimulateStaticFlags* f) {
   const std::string presets = fmt::format("{}", fmt::join(PresetNames(), ", "));
-  app->add_option("--preset", f->preset, "Device (the paper's, METHOD.md §6): " + presets)
+  app->add_option("--preset", f->preset, "Paper's device (docs/method.md §6): " + presets)
       ->capture_default_str();
   app->add_option("--seed", f->seed, "Random seed; the same seed gives the same session")
       ->capture_default_str();

@@ -231,7 +231,7 @@ void AddSimulateWalkCommand(CLI::App& simulate) {
       "a sensor on a pole, its IMU log and a GNSS reference (RTKLIB .pos)");
   app->add_option("--preset",
                   f->preset,
-                  fmt::format("Device (the paper's, METHOD.md §6): {}",
+                  fmt::format("Paper's device (docs/method.md §6): {}",
                               fmt::join(PresetNames(), ", ")))
       ->capture_default_str();
   app->add_option("--seed", f->seed, "Random seed; the same seed gives the same walk")

@@ -1,5 +1,5 @@
 // `mpcal verify --imu WALK --gnss REF [--calib CALIB.json] -o RESULT.json`:
-// the paper's field verification (METHOD.md §5): integrate a walk raw and
+// the paper's field verification (docs/method.md §5): integrate a walk raw and
 // corrected and compare both with a GNSS reference.
 #include <cstdio>
 #include <filesystem>

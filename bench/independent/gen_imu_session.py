@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Independent hand-held multi-position IMU session: accelerometer + gyroscope.
 
-Written from METHOD.md sections 2 and 7 and the README's log format, without
+Written from docs/method.md §2 and §7 and the README's log format, without
 reading mpcal's simulator or estimators, so that studies can test mpcal's
 accelerometer and gyroscope calibration on data its authors did not make.
 
@@ -20,7 +20,7 @@ CONVENTIONS (everything SI inside; the file's units are chosen by the options)
 Frames.
   World W: local level, x east, y north, z up; fixed to the Earth.
   Body B: the accelerometer's orthogonalised frame, the frame in which the
-    corrected specific force a of METHOD.md section 2 is expressed: x along
+    corrected specific force a of docs/method.md §2 is expressed: x along
     the accelerometer's x axis, y in the plane of its x and y axes, z
     completing a right-handed triad.
   Attitude: R = R_world_body maps body coordinates to world, v_W = R v_B.
@@ -56,7 +56,7 @@ Motion.  N static positions (default 26-40 drawn from the seed): the 26
   frame, |r| = --lever-arm, default 0.05 m) from the centre of rotation, so
       f_B = R^T (p_hand'' + G z_W) + domega/dt x r + omega x (omega x r).
 
-Accelerometer (METHOD.md section 2):
+Accelerometer (docs/method.md §2):
       Y = b + diag(1 + s) T^-1 f_B + n_a        (m/s^2)
   b up to 0.15 g, s up to 6 %, angles up to 0.02 rad; n_a white, per-sample
   sigma = N_a sqrt(rate) with the density N_a 0.0008-0.004 m/s^2/sqrt(Hz).
@@ -145,7 +145,7 @@ def bump_dd(x):
 
 # ---------------------------------------------------------------- error models
 def t_matrix(tyz, tzx, tzy):
-    """METHOD.md section 2: a = T diag(1/(1+s)) (Y - b)."""
+    """docs/method.md §2: a = T diag(1/(1+s)) (Y - b)."""
     return np.array([
         [1.0, 0.0, 0.0],
         [math.tan(tyz), 1 / math.cos(tyz), 0.0],
@@ -460,7 +460,7 @@ def truth_json(sim, args, afac, gfac, clipped):
             'quaternion': 'Hamilton [w,x,y,z], body to world: v_W = q v_B q*',
             'body_rate': 'dR_world_body/dt = R_world_body [omega]x, omega relative to the world frame',
             'gyro_model': 'raw = M^-1 (omega + R^T earth_rate_world) + bias(t) + noise',
-            'accel_model': 'Y = bias + diag(1+sfe) T^-1 f_body + noise (METHOD.md section 2)',
+            'accel_model': 'Y = bias + diag(1+sfe) T^-1 f_body + noise (docs/method.md §2)',
             'noise': 'per-sample sigma = density * sqrt(rate_hz)'},
         'accelerometer': acc,
         'gyroscope': {'M': [float(v) for v in gp['M'].ravel()],

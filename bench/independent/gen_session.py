@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Independent multi-position accelerometer session generator (plain Python).
 
-Written from the error model of METHOD.md section 2 and the README's
+Written from the error model of docs/method.md §2 and the README's
 "Conventions" (units, directions, the calibration file's frame), independently
 of mpcal's own simulator (src/simulate), so that study.py tests mpcal on
 sessions that its own simulator did not make.

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Independent still recording with known noise terms (accelerometer + gyroscope).
 
-Written from METHOD.md section 8 and IEEE Std 952/1293, without reading
+Written from docs/method.md §8 and IEEE Std 952/1293, without reading
 mpcal's simulator or noise estimators, so that studies can test an Allan
 analysis on data its authors did not make.
 

@@ -50,7 +50,7 @@ class Stats:
 
 
 def allan_dev_blocks(means, block_s, m):
-    """Overlapping Allan deviation at tau = m blocks from block means (METHOD.md section 8)."""
+    """Overlapping Allan deviation at tau = m blocks from block means (docs/method.md §8)."""
     theta = np.concatenate([[0.0], np.cumsum(means)]) * block_s
     d = theta[2 * m:] - 2 * theta[m:-m] + theta[:-2 * m]
     tau = m * block_s

@@ -2,7 +2,7 @@
 """Split-half study of the real recordings: is mpcal's 1σ honest without truth?
 
 Two halves of one session are two calibrations of the same sensor at the same
-power-up (METHOD.md §9). Each recording is cut by time into two logs, each log
+power-up (docs/method.md §9). Each recording is cut by time into two logs, each log
 is calibrated by `mpcal calibrate`, and the two estimates are compared in
 physical terms, since each half finds its own nominal unit factor for raw
 counts: bias in the log's units b/k, gain per axis (1 + s)/k, angles as they

@@ -1,6 +1,6 @@
 /// \file apply.h
 /// \brief Applying a calibration to a log: every accelerometer row corrected
-/// by eqs 8-10 of METHOD.md, everything else copied as it is.
+/// by eqs 8-10 (docs/method.md §2), everything else copied as it is.
 ///
 /// The log is streamed (LogScanner): memory does not grow with its length.
 /// Comments, the header, blank lines, the other columns, the delimiters and

@@ -79,7 +79,7 @@ inline int SplitRedundancyNeeded(SplitKind kind) {
 /// One split of the used positions into two halves, each calibrated alone,
 /// and how far the two estimates differ in units of their combined 1σ:
 /// z = (p₁ − p₂)/√(σ₁² + σ₂²), standard normal when the 1σ are honest
-/// (METHOD.md §9).
+/// (docs/method.md §9).
 struct SplitHalfComparison {
   SplitKind kind = SplitKind::kByTime;
   int positions_first = 0;

@@ -3,7 +3,7 @@
 /// orientations, and whether they are enough to calibrate a given model.
 ///
 /// The reference is the 26 canonical directions of Syed et al. (2007)
-/// (METHOD.md §3): the 6 faces, 12 edges and 8 corners of a cube. Directions
+/// (docs/method.md §3.9): the 6 faces, 12 edges and 8 corners of a cube. Directions
 /// are those of the gravity reaction in the sensor frame, i.e. of the mean
 /// reading: +z reads +1 g when the +z axis points up (the -z face is down).
 ///

@@ -1,6 +1,6 @@
 /// \file cramer_rao.h
 /// \brief The Cramér-Rao bound of the multi-position calibration, the
-/// accuracy limit no unbiased estimator beats (METHOD.md §3).
+/// accuracy limit no unbiased estimator beats (docs/method.md §3.8).
 ///
 /// Model: Ȳ_k = Forward(θ, g·u_k) + ε_k, ε_k ~ N(0, diag(σ²)/n_k), with the
 /// direction u_k of each position an unknown nuisance (two angles). The

@@ -1,5 +1,5 @@
 /// \file gnss.h
-/// \brief GNSS reference tracks for field verification (METHOD.md §5): readers
+/// \brief GNSS reference tracks for field verification (docs/method.md §5): readers
 /// for RTKLIB .pos files, NMEA GGA sentences and plain CSV, the conversion of
 /// geodetic positions to a local east-north-up frame at the first fix, and the
 /// writer of RTKLIB .pos files that `mpcal simulate walk` uses.

@@ -1,6 +1,6 @@
 /// \file gyro.h
 /// \brief The gyroscope from the same hand-held session (Tedaldi, Pretto &
-/// Menegatti, ICRA 2014; METHOD.md §7): between two static positions the
+/// Menegatti, ICRA 2014; docs/method.md §7): between two static positions the
 /// sensor turns, and the gyroscope integrated along the turn must carry the
 /// gravity direction measured at the first position onto the one measured
 /// at the next.
@@ -74,7 +74,7 @@ struct GyroOptions {
   /// gyroscope starts integrating where the position ends. 0 = the mean of
   /// the whole position.
   double direction_window_s = 1.0;
-  /// Model the bias's g-sensitivity, b = b₀ + G f (METHOD.md §7): G is
+  /// Model the bias's g-sensitivity, b = b₀ + G f (docs/method.md §7): G is
   /// regressed from the positions' biases on their specific force (and
   /// time), and G f follows the specific force through each turn; the rest
   /// of the bias is interpolated in time. Needs 15 positions or more. kAuto

@@ -4,7 +4,7 @@
 /// position and how well the turns fit. Plain data; the estimator is in
 /// gyro.h, the file in calibration_file.h.
 ///
-/// Model (Tedaldi, Pretto & Menegatti, ICRA 2014; METHOD.md §7): a reading
+/// Model (Tedaldi, Pretto & Menegatti, ICRA 2014; docs/method.md §7): a reading
 /// `r` in the log's units is turned into nominal rad/s by `radps_per_unit`
 /// (1 for rad/s, π/180 for deg/s, found from the data for raw counts), then
 ///

@@ -1,6 +1,6 @@
 /// \file repeat.h
 /// \brief Repeatability across sessions: the statistics of the paper's
-/// Tables 4-6 (Souza & Machado 2016, §6; METHOD.md §4) over two or more
+/// Tables 4-6 (Souza & Machado 2016, §6; docs/method.md §4) over two or more
 /// calibrations of one device, and the verdict whether each parameter changed
 /// between sessions beyond the trials' own 1σ.
 ///

@@ -1,7 +1,7 @@
 /// \file simulate.h
 /// \brief Synthetic hand-held sessions with known truth, for tests, the demo,
 /// the benchmarks and the Cramér-Rao Monte Carlo. Presets follow the paper's
-/// devices (METHOD.md §6).
+/// devices (docs/method.md §6).
 ///
 /// Conventions:
 /// - Sensor frame: the orthogonal frame of the error model (model.h): x along
@@ -184,7 +184,7 @@ std::vector<SimulateStaticOptions> TrialOptions(const SimulateStaticOptions& opt
                                                 int trials);
 
 /// `trials` sessions of one device, as the paper's repeated calibrations
-/// (METHOD.md §4): scale-factor errors and non-orthogonality are those of
+/// (docs/method.md §4): scale-factor errors and non-orthogonality are those of
 /// options.device.truth in every trial; the bias is redrawn at each power-up
 /// as device.truth.bias_mps2 + N(0, diag(device.turn_on_bias_std_mps2²)).
 /// Trial i uses seed TrialSeed(options.seed, i) (positions, tilts, shake and

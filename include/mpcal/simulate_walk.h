@@ -1,5 +1,5 @@
 /// \file simulate_walk.h
-/// \brief A synthetic field-verification walk with known truth (METHOD.md §5):
+/// \brief A synthetic field-verification walk with known truth (docs/method.md §5):
 /// a closed, roughly rectangular loop walked with a sensor on a pole, the IMU
 /// log of a device preset and a GNSS reference as an RTKLIB .pos file.
 ///

@@ -1,6 +1,6 @@
 /// \file trajectory.h
 /// \brief Strapdown integration of accelerometer readings to a trajectory, as
-/// the paper's field verification does it (METHOD.md §5): attitude at the
+/// the paper's field verification does it (docs/method.md §5): attitude at the
 /// start by levelling at the initial rest or from a stated mount, propagated
 /// by the gyroscope when the log has one; gravity of the local magnitude
 /// removed; trapezoidal double integration; velocity reset to zero at the

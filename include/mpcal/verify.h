@@ -1,6 +1,6 @@
 /// \file verify.h
 /// \brief Field verification of a calibration against a GNSS reference
-/// (METHOD.md §5, the paper's section 5.2): align the IMU log with the
+/// (docs/method.md §5, the paper's section 5.2): align the IMU log with the
 /// reference in time, integrate the readings raw and corrected to two
 /// trajectories, place them at the first reference point with the reference's
 /// initial heading, and report for each the start-to-end distance (the paper's

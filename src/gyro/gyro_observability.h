@@ -1,6 +1,6 @@
 // Which entries of M a session's turns determine: each turn sees the
 // gyroscope only through the axes it turns about, so a session that never
-// turns about an axis leaves that column of M undetermined (METHOD.md §7).
+// turns about an axis leaves that column of M undetermined (docs/method.md §7).
 #pragma once
 
 #include <vector>

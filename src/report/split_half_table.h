@@ -1,4 +1,4 @@
-// The split-half check of a calibration (METHOD.md §9) as a table: each
+// The split-half check of a calibration (docs/method.md §9) as a table: each
 // split, its halves, the z of every parameter, the RMS z and the verdict.
 #pragma once
 

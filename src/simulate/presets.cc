@@ -1,4 +1,4 @@
-// The paper's three devices (Souza & Machado 2016, METHOD.md §6) as presets.
+// The paper's three devices (Souza & Machado 2016, docs/method.md §6) as presets.
 //
 // Sources, per figure:
 // - Errors: trial 1 ("Ensaio 1") of the paper's Tables 4 (Colibri),

@@ -1,5 +1,5 @@
 // The Cramér-Rao bound with each position's direction as a nuisance
-// parameter (METHOD.md §3). Derivatives of the forward model come from
+// parameter (docs/method.md §3.8). Derivatives of the forward model come from
 // ceres::Jet through the same templated ErrorModelT the users call.
 #include "mpcal/cramer_rao.h"
 

@@ -1,4 +1,4 @@
-// Six-position initialisation (Syed et al. 2007, METHOD.md §3): without it
+// Six-position initialisation (Syed et al. 2007, docs/method.md §3.3): without it
 // the multi-position least squares can fail to converge for low-cost parts.
 #include <cmath>
 #include <limits>

@@ -1,7 +1,7 @@
 // Which parameters a set of positions determines. Gravity's magnitude sees
 // the sensor only through the directions it was held in: positions that do
 // not span the sphere leave combinations of parameters undetermined
-// (METHOD.md §3), and the user must be told which ones.
+// (docs/method.md §3.9), and the user must be told which ones.
 #pragma once
 
 #include <string>

@@ -1,5 +1,5 @@
 // The residual of one static position, eq 11 of Souza & Machado (2016) in the
-// |a| − g form METHOD.md §3 recommends (same minimiser, better scaling),
+// |a| − g form of docs/method.md §3.4 (same minimiser, better scaling),
 // whitened by its standard deviation so that every position counts by its
 // precision.
 #pragma once

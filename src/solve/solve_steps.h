@@ -100,7 +100,7 @@ void CrossValidate(std::span<const PositionObservation> positions,
 
 /// The factor the unscaled covariance (JᵀJ)⁻¹ is multiplied by: the update
 /// (kPriorDof + χ²)/(kPriorDof + dof) of a scaled inverse-χ² prior centred
-/// on 1 worth kPriorDof residuals, never below 1 (METHOD.md §3).
+/// on 1 worth kPriorDof residuals, never below 1 (docs/method.md §3.6).
 inline constexpr double kPriorDof = 10.0;
 double CovarianceScale(double chi2, int dof);
 
@@ -108,7 +108,7 @@ double CovarianceScale(double chi2, int dof);
 void SetCovariance(int dof, Fit& fit, SolveResult& result);
 
 /// The split-half check, and every 1σ widened by its rule when two halves
-/// disagree beyond chance (METHOD.md §9).
+/// disagree beyond chance (docs/method.md §9).
 void WidenBySplitHalves(std::span<const PositionObservation> positions,
                         const SolveOptions& options,
                         SolveResult& result);

@@ -1,4 +1,4 @@
-// The split-half check (METHOD.md §9): the used positions split in two, by
+// The split-half check (docs/method.md §9): the used positions split in two, by
 // time and alternately, each half calibrated alone, and the two estimates
 // compared against their combined 1σ. Two halves of one session are two
 // calibrations of the same sensor at the same power-up, so their

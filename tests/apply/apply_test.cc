@@ -34,7 +34,7 @@ constexpr double kSigmas = 5.0;
 // Folding the model into one matrix changes only rounding.
 constexpr double kFoldedRelative = 1e-13;
 
-// A consumer-grade sensor (METHOD.md §6 magnitudes).
+// A consumer-grade sensor (docs/method.md §6 magnitudes).
 Calibration ConsumerCalibration(AccelUnits units, double mps2_per_unit) {
   Calibration c;
   c.gravity_mps2 = kGravity;

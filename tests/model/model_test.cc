@@ -42,7 +42,7 @@ TEST(ErrorModel, CorrectInvertsForward) {
 }
 
 TEST(ErrorModel, CorrectIsTheMatrixFormOfEquations8To10) {
-  // a = T diag(1/(1+s)) (Y - b), METHOD.md §2.
+  // a = T diag(1/(1+s)) (Y - b), docs/method.md §2.1.
   const ErrorModel m = ConsumerGradeModel();
   const Eigen::Vector3d y(3.0, -1.0, 8.0);
   const Eigen::Vector3d expected =

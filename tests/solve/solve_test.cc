@@ -55,7 +55,7 @@ TEST(Solve, RecoversConsumerGradeErrorsExactlyWithoutNoise) {
   EXPECT_GT(r.residual_rms_before_mps2, 0.5);
 }
 
-// The estimator reaches the Cramér-Rao bound (METHOD.md §3): over many
+// The estimator reaches the Cramér-Rao bound (docs/method.md §3.8): over many
 // sessions the errors, divided by the bound's 1σ, have RMS 1, and the 1σ the
 // solver reports matches the bound.
 TEST(Solve, ReachesTheCramerRaoBound) {

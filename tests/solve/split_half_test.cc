@@ -1,4 +1,4 @@
-// The split-half check inside the fit (METHOD.md §9): two halves of one
+// The split-half check inside the fit (docs/method.md §9): two halves of one
 // session calibrated alone must agree within their combined 1σ.
 #include <cmath>
 #include <random>

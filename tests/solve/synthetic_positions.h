@@ -1,4 +1,4 @@
-// Static-position means drawn straight from the model of METHOD.md §3,
+// Static-position means drawn straight from the model of docs/method.md §3.8,
 // Ȳ_k = b + diag(1+s) T⁻¹ (g u_k) + ε_k, without a time series: the fast way
 // to test the estimator itself, hundreds of times.
 #pragma once
