@@ -40,8 +40,8 @@ struct BagTopic {
   std::string type;
   /// Serialisation of the messages: "ros1" or "cdr".
   std::string encoding;
-  /// Messages on the topic; -1 when the file does not say without reading
-  /// every message (an MCAP file without statistics).
+  /// Messages on the topic: from the index where the file has one (ROS 1
+  /// index data records, MCAP message indexes), else counted by reading.
   std::int64_t messages = 0;
   /// Receive (log) time of the first and last message, ns since the Unix
   /// epoch; 0 when unknown.
