@@ -53,7 +53,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string path = "/proc/self/fd/" + std::to_string(fd);
   try {
     const mpcal::BagSummary summary = mpcal::InspectBag(path);
-    for (const mpcal::BagTopic& t : summary.topics) Check(t.messages >= -1, "a count");
+    for (const mpcal::BagTopic& t : summary.topics)
+      Check(t.messages >= 0 && t.first_ns <= t.last_ns, "a count and a time range");
   } catch (const mpcal::Error&) {
     // The documented way to reject an input.
   }
