@@ -20,6 +20,10 @@ demo=(
   libfmt-dev           # tables and messages
   libfast-float-dev    # parsing numbers from logs
   libyaml-cpp-dev      # Kalibr's imu.yaml (written by the noise analysis)
+  libsqlite3-dev       # ROS 2 bags (*.db3)
+  libzstd-dev          # MCAP zstd chunks
+  liblz4-dev           # ROS 1 and MCAP lz4 chunks (the LZ4 frame format)
+  libbz2-dev           # ROS 1 bz2 chunks
 )
 # The Debian package (cmake/MpcalPackage.cmake).
 package=(

@@ -13,6 +13,7 @@
 #include "explain_detect.h"
 #include "gyro_table.h"
 #include "mpcal/atomic_file.h"
+#include "mpcal/bag.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/calibration_file.h"
 #include "mpcal/error.h"
@@ -58,11 +59,13 @@ std::string DescribeOptions(const CalibrateFlags& f) {
 // How the log was read, for the calibration file, so that 'mpcal apply'
 // reads logs of the same logger alike without the flags repeated. Found
 // again from the log's first lines (a regular file only: standard input and
-// pipes cannot be read twice).
+// pipes cannot be read twice). A robotics recording has no columns to record.
 std::optional<Calibration::InputLayout> RecordedLayout(const std::string& input,
                                                        const LogOptions& options) {
   std::error_code ec;
-  if (input == "-" || !std::filesystem::is_regular_file(input, ec)) return std::nullopt;
+  if (input == "-" || !std::filesystem::is_regular_file(input, ec) || IsBag(input)) {
+    return std::nullopt;
+  }
   LogOptions quiet = options;
   quiet.progress = nullptr;
   const LogScanner scanner(input, quiet);

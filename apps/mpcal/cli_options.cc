@@ -118,6 +118,11 @@ void AddLogOptions(CLI::App& app, LogOptions& options, const CountsHelp& counts)
       ->transform(OneOf(gyro_units))
       ->default_str("rads")
       ->group("Input log");
+  app.add_option(std::string(FlagName(Option::kLogTopic)),
+                 options.topic,
+                 "The sensor_msgs/Imu topic when the input is a ROS 1 bag, an MCAP file "
+                 "or a ROS 2 bag directory; default: its only IMU topic")
+      ->group("Input log");
 }
 
 double GravityFlags::Resolve() const {

@@ -24,6 +24,7 @@ constexpr std::array kFlags{
     FlagSpelling{Option::kLogTimeUnit, "--time-unit", "UNIT"},
     FlagSpelling{Option::kLogRate, "--rate", "HZ"},
     FlagSpelling{Option::kLogGyroUnits, "--gyro-units", "UNITS"},
+    FlagSpelling{Option::kLogTopic, "--topic", "TOPIC"},
     FlagSpelling{Option::kGravity, "--gravity", "MPS2"},
     FlagSpelling{Option::kLatitude, "--latitude", "DEG"},
     FlagSpelling{Option::kHeight, "--height", "M"},

@@ -24,6 +24,7 @@ enum class Option {
   kLogTimeUnit,         ///< LogOptions::time_unit
   kLogRate,             ///< LogOptions::rate_hz
   kLogGyroUnits,        ///< LogOptions::gyro_in_dps / gyro_in_counts
+  kLogTopic,            ///< LogOptions::topic (a ROS bag or MCAP file)
   kGravity,             ///< the gravity magnitude (CalibrateOptions::solve.gravity_mps2)
   kLatitude,            ///< the site's latitude, for normal gravity
   kHeight,              ///< the site's height, for normal gravity

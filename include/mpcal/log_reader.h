@@ -11,6 +11,14 @@
 /// Without a header the columns are t, ax, ay, az in order unless `columns`
 /// says otherwise.
 ///
+/// A recording (a ROS 1 bag, an MCAP file, a ROS 2 bag directory: bag.h) is
+/// read as a log by ReadLog and ReadLogRows: each sensor_msgs/Imu message of
+/// LogOptions::topic is a row, its time the header stamp in seconds from the
+/// first message's, the accelerometer in m/s² and the gyroscope in rad/s as
+/// ROS defines them (no gyroscope when the first message marks its angular
+/// velocity as not measured: covariance[0] = -1); the rules on time order, duplicates and
+/// gaps are the text logs' (a "line" is then a message, counted from 1).
+///
 /// Three entry points: ReadLog reads a whole log into a Recording (for
 /// calibration); ReadLogRows reads it the same way but hands the rows over
 /// chunk by chunk instead of holding them (for analyses that need one pass,
@@ -58,6 +66,10 @@ struct LogOptions {
   std::string columns;
   /// Units of the accelerometer columns.
   AccelUnits units = AccelUnits::kMps2;
+  /// The sensor_msgs/Imu topic to read when the input is a recording (a ROS 1
+  /// bag, an MCAP file, a ROS 2 bag directory: see bag.h). Empty: the
+  /// recording's only sensor_msgs/Imu topic. Ignored for text logs.
+  std::string topic;
   /// Units of the gyroscope columns: rad/s, or deg/s when true.
   bool gyro_in_dps = false;
   /// The gyroscope columns are raw ADC counts, kept as read

@@ -19,10 +19,12 @@
 
 #include <fmt/format.h>
 
+#include "bag_log.h"
 #include "chunk_source.h"
 #include "log_columns.h"
 #include "log_layout.h"
 #include "log_text.h"
+#include "mpcal/bag.h"
 #include "mpcal/error.h"
 #include "row_parser.h"
 #include "row_sink.h"
@@ -137,6 +139,12 @@ LogScanner::LogScanner(const std::string& path,
                        const LogOptions& options,
                        bool parse_gyro) {
   ThrowIfInvalid(options);
+  if (IsBag(path)) {
+    throw Error(ErrorKind::kInput,
+                path +
+                    ": a robotics recording (ROS bag or MCAP) is read, not rewritten "
+                    "line by line; only text logs are");
+  }
   impl_ = std::make_unique<Impl>(path, options, parse_gyro);
 }
 
@@ -194,6 +202,7 @@ LogStreamSummary ReadRows(const std::string& path,
                           Recording* rec,
                           std::function<void(const Recording&)> consume) {
   ThrowIfInvalid(options);
+  if (IsBag(path)) return logio::ReadBagRows(path, options, rec, std::move(consume));
   logio::LogFile file(path);
   logio::PageBuffer head_bytes(logio::kChunkBytes);
   std::string read_error;

@@ -179,12 +179,13 @@ void RowSink::ThrowTimeBack(const ChunkRows& c, std::size_t row, std::size_t kep
   const double before = last_time_s_;
   HandOver();  // the rows before the error
   throw Error(ErrorKind::kTime,
-              fmt::format("{}:{}: time goes back: {:.9g} s after {:.9g} s on line {}; "
+              fmt::format("{}:{}: time goes back: {:.9g} s after {:.9g} s on {} {}; "
                           "the rows must be in time order{}",
                           rec_->source,
                           LineOf(c, row),
                           t,
                           before,
+                          row_noun_,
                           previous_line_,
                           CounterWrapHint(before / time_scale_)));
 }
@@ -268,10 +269,11 @@ void RowSink::Finish(bool has_header) {
   }
   if (duplicates_ > 0) {
     rec_->warnings.push_back(
-        fmt::format("{}: {} row{} with a duplicated timestamp dropped (first on line {})",
+        fmt::format("{}: {} row{} with a duplicated timestamp dropped (first on {} {})",
                     rec_->source,
                     duplicates_,
                     duplicates_ == 1 ? "" : "s",
+                    row_noun_,
                     first_duplicate_line_));
   }
   gaps_.Finish();

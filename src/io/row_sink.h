@@ -88,6 +88,10 @@ class RowSink {
   /// \throws mpcal::Error for no rows or a time beyond any clock.
   void Finish(bool has_header);
 
+  /// What the input's numbered units are called in messages ("line"; a
+  /// recording's rows are "message"s).
+  void NameRows(std::string noun) { row_noun_ = std::move(noun); }
+
   /// Rows kept so far (duplicates dropped), and the first and last time.
   std::size_t rows() const { return rows_; }
   double first_time_s() const { return first_time_s_; }
@@ -116,6 +120,7 @@ class RowSink {
   CutOffLine cut_off_;
   GapCounter gaps_ = ReaderGapCounter();
   std::function<void(const Recording&)> consume_;  // empty: holding
+  std::string row_noun_ = "line";
 };
 
 }  // namespace mpcal::logio

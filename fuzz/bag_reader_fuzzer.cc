@@ -1,0 +1,76 @@
+// libFuzzer target for the bag readers (ROS 1, MCAP, ROS 2 SQLite).
+//
+// The input is the file. It goes through an in-memory file (memfd) opened by
+// its /proc path, so the readers run exactly as on a file from disk. Each
+// input is inspected, then its /imu/data topic read. Any outcome but success
+// or mpcal::Error is a finding: another exception, a sanitizer report, a
+// timeout or memory beyond the limit (every length is checked against what
+// remains and the caps in bag.h), or a batch that breaks the sink's contract.
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mpcal/bag.h"
+#include "mpcal/error.h"
+
+namespace {
+
+int MemoryFile() {
+  static const int fd = [] {
+    const int f = ::memfd_create("mpcal_fuzz_bag", MFD_CLOEXEC);
+    if (f < 0) {
+      std::perror("memfd_create");
+      std::abort();
+    }
+    return f;
+  }();
+  return fd;
+}
+
+void Check(bool ok, const char* what) {
+  if (!ok) {
+    std::fprintf(stderr, "invariant broken: %s\n", what);
+    std::abort();
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const int fd = MemoryFile();
+  if (::ftruncate(fd, 0) != 0 ||
+      ::pwrite(fd, data, size, 0) != static_cast<ssize_t>(size)) {
+    std::perror("memfd write");
+    std::abort();
+  }
+  const std::string path = "/proc/self/fd/" + std::to_string(fd);
+  try {
+    const mpcal::BagSummary summary = mpcal::InspectBag(path);
+    for (const mpcal::BagTopic& t : summary.topics)
+      Check(t.messages >= 0 && t.first_ns <= t.last_ns, "a count and a time range");
+  } catch (const mpcal::Error&) {
+    // The documented way to reject an input.
+  }
+  try {
+    std::vector<std::string> warnings;
+    std::size_t messages = 0;
+    mpcal::ReadImuMessages(
+        path,
+        "/imu/data",
+        [&](std::span<const mpcal::ImuMessage> batch) {
+          Check(!batch.empty(), "a batch holds messages");
+          messages += batch.size();
+        },
+        warnings);
+    Check(messages <= size, "no more messages than bytes");
+  } catch (const mpcal::Error&) {
+  }
+  return 0;
+}

@@ -1,0 +1,97 @@
+// Private to src/bag/: the bounded reads every container reader is built on.
+// A length read from a file is checked against what remains (of the file or
+// of the buffer) before anything is read or allocated, so a damaged length
+// makes a DataError, never a read past the end or an unbounded allocation.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace mpcal::bag {
+
+/// Malformed content found below the record level; the container reader
+/// turns it into an mpcal::Error naming the file and the record.
+class DataError : public std::runtime_error {
+ public:
+  explicit DataError(const std::string& what) : std::runtime_error(what) {}
+};
+
+/// Little-endian reads from a buffer; every read checks what remains.
+class ByteCursor {
+ public:
+  explicit ByteCursor(std::string_view data) : data_(data) {}
+  // The cursor views its bytes: a temporary string would leave it dangling.
+  explicit ByteCursor(std::string&&) = delete;
+
+  std::size_t offset() const { return pos_; }
+  std::size_t remaining() const { return data_.size() - pos_; }
+  bool empty() const { return pos_ == data_.size(); }
+
+  std::string_view Bytes(std::uint64_t n, const char* what) {
+    if (n > remaining()) {
+      throw DataError(std::string(what) + " needs " + std::to_string(n) +
+                      " bytes at offset " + std::to_string(pos_) + " but " +
+                      std::to_string(remaining()) + " remain");
+    }
+    const std::string_view out = data_.substr(pos_, n);
+    pos_ += n;
+    return out;
+  }
+  void Skip(std::uint64_t n, const char* what) { Bytes(n, what); }
+  /// Moves to the next multiple of `alignment` counted from `origin`.
+  void Align(std::size_t alignment, std::size_t origin, const char* what) {
+    const std::size_t misalign = (pos_ - origin) % alignment;
+    if (misalign != 0) Skip(alignment - misalign, what);
+  }
+
+  template <typename T>
+  T Read(const char* what, bool big_endian = false) {
+    const std::string_view b = Bytes(sizeof(T), what);
+    unsigned char raw[sizeof(T)];
+    std::memcpy(raw, b.data(), sizeof(T));
+    if (big_endian) {
+      for (std::size_t i = 0; i < sizeof(T) / 2; ++i)
+        std::swap(raw[i], raw[sizeof(T) - 1 - i]);
+    }
+    T value;
+    std::memcpy(&value, raw, sizeof(T));
+    return value;
+  }
+  std::uint8_t U8(const char* what) { return Read<std::uint8_t>(what); }
+  std::uint16_t U16(const char* what) { return Read<std::uint16_t>(what); }
+  std::uint32_t U32(const char* what) { return Read<std::uint32_t>(what); }
+  std::uint64_t U64(const char* what) { return Read<std::uint64_t>(what); }
+
+ private:
+  std::string_view data_;
+  std::size_t pos_ = 0;
+};
+
+/// A file read at offsets, never held whole.
+class BagFile {
+ public:
+  /// \throws mpcal::Error when the file cannot be opened.
+  explicit BagFile(const std::string& path);
+
+  const std::string& path() const { return path_; }
+  std::uint64_t size() const { return size_; }
+  /// Reads `n` bytes at `offset`.
+  /// \throws DataError when they run past the end of the file.
+  std::string ReadAt(std::uint64_t offset, std::uint64_t n, const char* what);
+  /// Like ReadAt but returns what there is (fewer bytes at the end).
+  std::string ReadSome(std::uint64_t offset, std::uint64_t n);
+
+ private:
+  std::string path_;
+  std::ifstream in_;
+  std::uint64_t size_ = 0;
+};
+
+/// "path: what" as an mpcal::Error of kind kInput.
+[[noreturn]] void ThrowBagError(const std::string& path, const std::string& what);
+
+}  // namespace mpcal::bag

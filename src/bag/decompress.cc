@@ -1,0 +1,156 @@
+#include "bag/decompress.h"
+
+#include <bzlib.h>
+#include <lz4frame.h>
+#include <zstd.h>
+
+#include <algorithm>
+#include <limits>
+#include <memory>
+
+#include "bag/bag_io.h"
+#include "mpcal/bag.h"
+
+namespace mpcal::bag {
+namespace {
+
+// The output grows a step at a time, so a chunk claiming a huge size costs
+// only what its data really unpacks to.
+constexpr std::size_t kStepBytes = 1 << 20;
+
+// Makes room for at least one more byte than `expected` allows, so a stream
+// that unpacks to more than it claims is caught.
+char* Grow(std::string& out,
+           std::size_t& used,
+           std::uint64_t expected,
+           std::size_t& room) {
+  if (used == out.size()) {
+    const std::uint64_t limit = expected + 1;
+    out.resize(static_cast<std::size_t>(
+        std::min<std::uint64_t>(limit, out.size() + kStepBytes)));
+  }
+  room = out.size() - used;
+  return out.data() + used;
+}
+
+[[noreturn]] void SizeMismatch(const char* name,
+                               std::size_t got,
+                               std::uint64_t expected) {
+  throw DataError(
+      std::string(name) + " data unpacks to " +
+      (got > expected ? "more than " + std::to_string(expected) : std::to_string(got)) +
+      " bytes; the chunk header says " + std::to_string(expected));
+}
+
+std::string Bz2(std::string_view input, std::uint64_t expected) {
+  bz_stream s{};
+  if (BZ2_bzDecompressInit(&s, 0, 0) != BZ_OK) throw DataError("bz2: cannot initialise");
+  std::unique_ptr<bz_stream, int (*)(bz_stream*)> guard(&s, BZ2_bzDecompressEnd);
+  if (input.size() > std::numeric_limits<unsigned>::max())
+    throw DataError("bz2: chunk too large");
+  s.next_in = const_cast<char*>(input.data());
+  s.avail_in = static_cast<unsigned>(input.size());
+  std::string out;
+  std::size_t used = 0;
+  for (;;) {
+    std::size_t room = 0;
+    s.next_out = Grow(out, used, expected, room);
+    s.avail_out = static_cast<unsigned>(room);
+    const int rc = BZ2_bzDecompress(&s);
+    used = out.size() - s.avail_out;
+    if (used > expected) SizeMismatch("bz2", used, expected);
+    if (rc == BZ_STREAM_END) break;
+    if (rc != BZ_OK)
+      throw DataError("bz2 data is damaged (libbz2 code " + std::to_string(rc) + ")");
+    if (s.avail_in == 0 && s.avail_out != 0) throw DataError("bz2 data ends early");
+  }
+  if (used != expected) SizeMismatch("bz2", used, expected);
+  out.resize(used);
+  return out;
+}
+
+std::string Lz4(std::string_view input, std::uint64_t expected) {
+  LZ4F_dctx* raw = nullptr;
+  if (LZ4F_isError(LZ4F_createDecompressionContext(&raw, LZ4F_VERSION))) {
+    throw DataError("lz4: cannot initialise");
+  }
+  std::unique_ptr<LZ4F_dctx, LZ4F_errorCode_t (*)(LZ4F_dctx*)> guard(
+      raw, LZ4F_freeDecompressionContext);
+  std::string out;
+  std::size_t used = 0;
+  std::size_t in_pos = 0;
+  for (;;) {
+    std::size_t room = 0;
+    char* dst = Grow(out, used, expected, room);
+    std::size_t src_size = input.size() - in_pos;
+    const std::size_t hint =
+        LZ4F_decompress(raw, dst, &room, input.data() + in_pos, &src_size, nullptr);
+    if (LZ4F_isError(hint)) {
+      throw DataError(std::string("lz4 frame is damaged (") + LZ4F_getErrorName(hint) +
+                      ")");
+    }
+    in_pos += src_size;
+    used += room;
+    if (used > expected) SizeMismatch("lz4", used, expected);
+    if (hint == 0) break;
+    if (in_pos == input.size() && room == 0) throw DataError("lz4 frame ends early");
+  }
+  if (used != expected) SizeMismatch("lz4", used, expected);
+  out.resize(used);
+  return out;
+}
+
+std::string Zstd(std::string_view input, std::uint64_t expected) {
+  std::unique_ptr<ZSTD_DCtx, std::size_t (*)(ZSTD_DCtx*)> ctx(ZSTD_createDCtx(),
+                                                              ZSTD_freeDCtx);
+  if (!ctx) throw DataError("zstd: cannot initialise");
+  // A window beyond the chunk's size would only serve a hostile frame.
+  ZSTD_DCtx_setParameter(ctx.get(), ZSTD_d_windowLogMax, 30);
+  ZSTD_inBuffer in{input.data(), input.size(), 0};
+  std::string out;
+  std::size_t used = 0;
+  for (;;) {
+    std::size_t room = 0;
+    char* dst = Grow(out, used, expected, room);
+    ZSTD_outBuffer o{dst, room, 0};
+    const std::size_t rc = ZSTD_decompressStream(ctx.get(), &o, &in);
+    if (ZSTD_isError(rc)) {
+      throw DataError(std::string("zstd data is damaged (") + ZSTD_getErrorName(rc) +
+                      ")");
+    }
+    used += o.pos;
+    if (used > expected) SizeMismatch("zstd", used, expected);
+    if (rc == 0 && in.pos == in.size) break;
+    if (in.pos == in.size && o.pos < o.size) throw DataError("zstd data ends early");
+  }
+  if (used != expected) SizeMismatch("zstd", used, expected);
+  out.resize(used);
+  return out;
+}
+
+}  // namespace
+
+bool IsKnownCompression(std::string_view c) {
+  return c.empty() || c == "none" || c == "bz2" || c == "lz4" || c == "zstd";
+}
+
+std::string Decompress(std::string_view compression,
+                       std::string_view input,
+                       std::uint64_t expected_size) {
+  if (expected_size > kBagMaxChunkBytes) {
+    throw DataError("a chunk of " + std::to_string(expected_size) +
+                    " bytes unpacked is above the cap of " +
+                    std::to_string(kBagMaxChunkBytes));
+  }
+  if (compression.empty() || compression == "none") {
+    if (input.size() != expected_size)
+      SizeMismatch("stored", input.size(), expected_size);
+    return std::string(input);
+  }
+  if (compression == "bz2") return Bz2(input, expected_size);
+  if (compression == "lz4") return Lz4(input, expected_size);
+  if (compression == "zstd") return Zstd(input, expected_size);
+  throw DataError("unknown compression '" + std::string(compression) + "'");
+}
+
+}  // namespace mpcal::bag

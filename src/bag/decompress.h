@@ -1,0 +1,23 @@
+// Private to src/bag/: the chunk compressions of ROS 1 bags and MCAP files.
+// bz2, lz4 and zstd stay inside this file's implementation.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace mpcal::bag {
+
+/// "" and "none" (stored), "bz2", "lz4" (the LZ4 frame format) and "zstd".
+bool IsKnownCompression(std::string_view compression);
+
+/// Unpacks `input`, which must unpack to exactly `expected_size` bytes
+/// (at most kBagMaxChunkBytes). Memory grows with what the data really
+/// unpacks to, not with what `expected_size` claims.
+/// \throws DataError for an unknown compression, damaged data, or a size
+///   other than `expected_size`.
+std::string Decompress(std::string_view compression,
+                       std::string_view input,
+                       std::uint64_t expected_size);
+
+}  // namespace mpcal::bag

@@ -1,0 +1,79 @@
+// Private to src/bag/: the records of a ROS 1 bag, format 2.0.
+//
+// Layout from the format's reference reader, rosbag/bag.py in Debian's
+// python3-rosbag 1.15.15+ds-2 (/usr/lib/python3/dist-packages/rosbag/bag.py):
+// op codes at lines 1771-1777; a record header as length-prefixed
+// "name=value" fields at 2013-2052; the bag header record at 2705-2721;
+// connection records at 2723-2737; chunk info records at 2739-2764; the chunk
+// header (compression, size) at 2766-2776 and as written at 1721-1728; index
+// data records at 2778. Also wiki.ros.org/Bags/Format/2.0.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "bag/bag_io.h"
+
+namespace mpcal::bag::ros1 {
+
+inline constexpr std::string_view kMagic = "#ROSBAG V2.0\n";
+
+enum Op : std::uint8_t {
+  kMessageData = 0x02,
+  kBagHeader = 0x03,
+  kIndexData = 0x04,
+  kChunk = 0x05,
+  kChunkInfo = 0x06,
+  kConnection = 0x07,
+};
+
+/// A record's header fields, "name" -> raw value bytes.
+using Fields = std::map<std::string, std::string, std::less<>>;
+
+/// Parses the header fields of one record (u32 length + "name=value" each).
+/// \throws DataError for a field without '=' or running past the header.
+Fields ParseFields(std::string_view header);
+
+/// The op field of a record.
+/// \throws DataError when it is missing or not one byte.
+std::uint8_t OpOf(const Fields& fields);
+std::uint32_t U32Field(const Fields& fields, std::string_view name);
+std::uint64_t U64Field(const Fields& fields, std::string_view name);
+/// A ROS time field (u32 sec, u32 nsec) in ns.
+std::int64_t TimeField(const Fields& fields, std::string_view name);
+std::string StringField(const Fields& fields, std::string_view name);
+
+/// A record read from a buffer (a chunk's contents) or from the file.
+struct Record {
+  Fields fields;
+  std::uint8_t op = 0;
+  /// Where the data starts (in the buffer or the file) and its length.
+  std::uint64_t data_offset = 0;
+  std::uint32_t data_length = 0;
+  /// Where the next record starts.
+  std::uint64_t next = 0;
+};
+
+/// Reads the record whose header starts at `offset` in `buffer`.
+/// \throws DataError when a length runs past the buffer.
+Record RecordIn(std::string_view buffer, std::uint64_t offset);
+
+/// Reads the header of the record at `offset` in `file` (not its data).
+/// \throws DataError when a length runs past the file or above the caps.
+Record RecordAt(BagFile& file, std::uint64_t offset);
+
+/// A connection: a topic from one publisher, with its message type.
+struct Connection {
+  std::uint32_t id = 0;
+  std::string topic;
+  std::string type;
+  std::string md5sum;
+};
+
+/// A connection record's header and data (itself "name=value" fields).
+Connection ParseConnection(const Record& record, std::string_view data);
+
+}  // namespace mpcal::bag::ros1
