@@ -300,15 +300,12 @@ json GyroToJson(const GyroCalibration& g) {
   return j;
 }
 
-GyroCalibration GyroFromJson(const JsonReader& r, const json& object) {
-  const std::string path(kPath);
-  if (!object.is_object()) {
-    r.Fail(fmt::format(
-        "'{}' must be an object, found {}", path, JsonReader::TypeName(object)));
-  }
-  GyroCalibration g;
-  const json& input = r.Object(object, path, "input");
-  const std::string ipath = path + ".input";
+namespace {
+
+// `"gyroscope.input"`: the units and their nominal scale.
+void ReadInput(const JsonReader& r, const json& object, GyroCalibration& g) {
+  const std::string ipath = std::string(kPath) + ".input";
+  const json& input = r.Object(object, std::string(kPath), "input");
   const std::string units = r.String(input, ipath, "units");
   const auto parsed = ParseGyroUnits(units);
   if (!parsed) {
@@ -318,6 +315,62 @@ GyroCalibration GyroFromJson(const JsonReader& r, const json& object) {
   g.input_units = *parsed;
   g.radps_per_unit = r.Number(input, ipath, "radps_per_unit");
   CheckNominalScale(r, g, units);
+}
+
+// `"gyroscope.std"` and `"gyroscope.m_covariance"`.
+void ReadUncertainty(const Ranges& ranges, const json& object, GyroCalibration& g) {
+  const JsonReader& r = ranges.r;
+  const std::string path(kPath);
+  if (object.contains("std")) {
+    const json& s = r.Object(object, path, "std");
+    if (s.contains("bias_radps")) {
+      g.bias_std_radps = r.Vector(s, path + ".std", "bias_radps");
+      ranges.Bias(*g.bias_std_radps, "std.bias_radps", true);
+    }
+    if (s.contains("m")) ranges.MStd(Matrix(Numbers(r, s, path + ".std", "m", 9)));
+  }
+  if (object.contains("m_covariance")) {
+    const std::vector<double> v = Numbers(r, object, path, "m_covariance", 81);
+    Eigen::Matrix<double, 9, 9> c;
+    for (int i = 0; i < 81; ++i) c.data()[i] = v[static_cast<std::size_t>(i)];
+    ranges.Covariance(c);
+    g.m_covariance = c;
+  }
+}
+
+// `"gyroscope.position_bias"`: times on a logger's clock, plausible biases.
+void ReadPositionBias(const Ranges& ranges, const json& ps, GyroCalibration& g) {
+  const JsonReader& r = ranges.r;
+  const std::string path(kPath);
+  if (!ps.is_array()) {
+    r.Fail(fmt::format(
+        "'{}.position_bias' must be an array, found {}", path, JsonReader::TypeName(ps)));
+  }
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const std::string at = fmt::format("{}.position_bias[{}]", path, i);
+    if (!ps[i].is_object()) {
+      r.Fail(fmt::format(
+          "'{}' must be an object, found {}", at, JsonReader::TypeName(ps[i])));
+    }
+    const GyroBiasSample b{r.Number(ps[i], at, "t_s"), r.Vector(ps[i], at, "bias_radps")};
+    if (!(std::abs(b.t_s) <= kMaxTimeS)) {
+      r.Fail(fmt::format("'{}.t_s' = {:.6g} s is beyond any logger's clock", at, b.t_s));
+    }
+    ranges.Bias(b.bias_radps, fmt::format("position_bias[{}].bias_radps", i), false);
+    g.position_bias.push_back(b);
+  }
+}
+
+}  // namespace
+
+GyroCalibration GyroFromJson(const JsonReader& r, const json& object) {
+  const std::string path(kPath);
+  if (!object.is_object()) {
+    r.Fail(fmt::format(
+        "'{}' must be an object, found {}", path, JsonReader::TypeName(object)));
+  }
+  GyroCalibration g;
+  ReadInput(r, object, g);
   const Ranges ranges{r, g};
   g.m = Matrix(Numbers(r, object, path, "m", 9));
   ranges.M(g.m, "m");
@@ -338,21 +391,7 @@ GyroCalibration GyroFromJson(const JsonReader& r, const json& object) {
         Matrix(Numbers(r, object, path, "g_sensitivity_radps_per_mps2", 9));
     ranges.GSensitivity(*g.g_sensitivity_radps_per_mps2);
   }
-  if (object.contains("std")) {
-    const json& s = r.Object(object, path, "std");
-    if (s.contains("bias_radps")) {
-      g.bias_std_radps = r.Vector(s, path + ".std", "bias_radps");
-      ranges.Bias(*g.bias_std_radps, "std.bias_radps", true);
-    }
-    if (s.contains("m")) ranges.MStd(Matrix(Numbers(r, s, path + ".std", "m", 9)));
-  }
-  if (object.contains("m_covariance")) {
-    const std::vector<double> v = Numbers(r, object, path, "m_covariance", 81);
-    Eigen::Matrix<double, 9, 9> c;
-    for (int i = 0; i < 81; ++i) c.data()[i] = v[static_cast<std::size_t>(i)];
-    ranges.Covariance(c);
-    g.m_covariance = c;
-  }
+  ReadUncertainty(ranges, object, g);
   if (object.contains("fit")) {
     g.fit = ReadFit(r, r.Object(object, path, "fit"));
     // Only a converged fit is written: a block that says otherwise is not a
@@ -364,29 +403,8 @@ GyroCalibration GyroFromJson(const JsonReader& r, const json& object) {
                       path));
     }
   }
-  if (object.contains("position_bias")) {
-    const json& ps = object["position_bias"];
-    if (!ps.is_array()) {
-      r.Fail(fmt::format("'{}.position_bias' must be an array, found {}",
-                         path,
-                         JsonReader::TypeName(ps)));
-    }
-    for (std::size_t i = 0; i < ps.size(); ++i) {
-      const std::string at = fmt::format("{}.position_bias[{}]", path, i);
-      if (!ps[i].is_object()) {
-        r.Fail(fmt::format(
-            "'{}' must be an object, found {}", at, JsonReader::TypeName(ps[i])));
-      }
-      const GyroBiasSample b{r.Number(ps[i], at, "t_s"),
-                             r.Vector(ps[i], at, "bias_radps")};
-      if (!(std::abs(b.t_s) <= kMaxTimeS)) {
-        r.Fail(
-            fmt::format("'{}.t_s' = {:.6g} s is beyond any logger's clock", at, b.t_s));
-      }
-      ranges.Bias(b.bias_radps, fmt::format("position_bias[{}].bias_radps", i), false);
-      g.position_bias.push_back(b);
-    }
-  }
+  if (object.contains("position_bias"))
+    ReadPositionBias(ranges, object["position_bias"], g);
   return g;
 }
 
