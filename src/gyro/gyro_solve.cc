@@ -189,6 +189,21 @@ bool Plausible(const Eigen::Matrix3d& m) {
   return true;
 }
 
+// The rest of what the file's reader accepts (plausible.h): every 1σ of M
+// below kMaxScaleFactorError, G within 10 °/s per g.
+bool PlausibleSpread(const GyroCalibration& c) {
+  if (c.m_covariance) {
+    for (int i = 0; i < 9; ++i) {
+      if (!((*c.m_covariance)(i, i) < kMaxScaleFactorError * kMaxScaleFactorError)) {
+        return false;
+      }
+    }
+  }
+  return !c.g_sensitivity_radps_per_mps2 ||
+         c.g_sensitivity_radps_per_mps2->cwiseAbs().maxCoeff() <=
+             kMaxGyroGSensitivityRadpsPerMps2;
+}
+
 // The Moore-Penrose inverse of the information (the covariance of the
 // entries it determines; directions it does not determine get none).
 Eigen::Matrix<double, 9, 9> PseudoInverse(
@@ -330,7 +345,9 @@ void Finish(const TurnProblem& problem,
   fit.noise_std_radps = problem.noise_std_raw * scale;
   fit.sample_period_s = problem.sample_period_s;
   const bool plausible = Plausible(c.m);
-  fit.converged = summary.termination_type == ceres::CONVERGENCE && plausible;
+  const bool plausible_spread = PlausibleSpread(c);
+  fit.converged =
+      summary.termination_type == ceres::CONVERGENCE && plausible && plausible_spread;
   c.fit = fit;
   result->status = fit.converged ? GyroStatus::kConverged : GyroStatus::kNoConvergence;
   // The turns may determine M at the nominal start and not at the estimate
@@ -340,10 +357,13 @@ void Finish(const TurnProblem& problem,
     if (f.kind == GyroFindingKind::kUndetermined)
       result->status = GyroStatus::kUndetermined;
   }
-  result->message = plausible
-                        ? summary.message
-                        : "the estimate left the plausible range (|scale - 1| < 0.5, "
-                          "|misalignment| < 0.5): the solver diverged";
+  result->message =
+      !plausible ? "the estimate left the plausible range (|scale - 1| < 0.5, "
+                   "|misalignment| < 0.5): the solver diverged"
+      : !plausible_spread
+          ? "the estimate's 1σ of M (0.5 or more) or its bias's g-sensitivity "
+            "(beyond 10 deg/s per g) is not a sensor's"
+          : summary.message;
 }
 
 }  // namespace

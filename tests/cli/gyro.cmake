@@ -127,6 +127,17 @@ add_test(NAME cli.apply_imu_m_beyond_plausible
           -- sh -c "awk '/\"m\": \\[/ && !done { print; getline; print \"      1e308,\"; done = 1; next } { print }' '${_imu1}' > c.json && \"$0\" simulate static --preset colibri --gyro --seed 1 --positions 12 --dwell 3 -o s.csv > /dev/null && exec \"$0\" apply c.json s.csv -o out.csv"
           $<TARGET_FILE:mpcal_cli>)
 set_tests_properties(cli.apply_imu_m_beyond_plausible PROPERTIES LABELS cli)
+# repeat and report read the same file the same way (a scale-factor error of
+# -1e9 ppm was shown as a trial's).
+foreach(_cmd "repeat c.json '${_imu2}'" "report --calib c.json -o -")
+  string(REGEX MATCH "^[a-z]+" _verb "${_cmd}")
+  add_test(NAME cli.${_verb}_imu_m_beyond_plausible
+    COMMAND ${MPCAL_CLI_EXPECT} 1 "'gyroscope.m\\[4\\]' = -1000 is not a scale 1 \\+ s"
+            --workdir ${CMAKE_CURRENT_BINARY_DIR}/${_verb}_imu_m_beyond_plausible
+            -- sh -c "awk '/\"m\": \\[/ && !done { print; getline; print; getline; print; getline; print; getline; print; getline; print \"      -1000,\"; done = 1; next } { print }' '${_imu1}' > c.json && exec \"$0\" ${_cmd}"
+            $<TARGET_FILE:mpcal_cli>)
+  set_tests_properties(cli.${_verb}_imu_m_beyond_plausible PROPERTIES LABELS cli)
+endforeach()
 
 # --gyro-log: one flag, one check, in every command that takes it.
 foreach(_cmd detect calibrate)
