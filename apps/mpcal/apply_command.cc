@@ -34,7 +34,7 @@ struct ApplyFlags {
 // A file whose gyroscope block says rad/s while the command line it records
 // read the log in deg/s holds M and b in rad/s for logs in deg/s: read as
 // its block says, such a log would be corrected 57.3 times too large.
-// (Calibrations record the log's own units; this one cannot be trusted to.)
+// (A calibration made from a log in deg/s records 'dps' in its block.)
 void RefuseUnitsLostInProvenance(const std::string& path, const Calibration& c) {
   if (!c.gyroscope || c.gyroscope->input_units != GyroUnits::kRadps || !c.provenance) {
     return;
