@@ -154,6 +154,18 @@ void RunApply(const CLI::App& cmd, const ApplyFlags& flags) {
   progress.Done();
   PrintWarnings(result.warnings);
   if (result.rest_mismatch) PrintWarnings({ExplainRestMismatch(*result.rest_mismatch)});
+  // The flag wins over the file; a flag that differs from it is said, in
+  // case it was a slip.
+  if (result.gyro_corrected &&
+      result.log_gyro_units != calibration.gyroscope->input_units) {
+    PrintWarnings({fmt::format(
+        "the log's gyroscope was read in {} as {} says; the gyroscope of '{}' is for "
+        "logs in {}",
+        ToString(result.log_gyro_units),
+        FlagName(Option::kLogGyroUnits),
+        flags.calibration,
+        ToString(calibration.gyroscope->input_units))});
+  }
   // Standard output may be the corrected log itself: the summary goes there
   // only when the log went to a file.
   if (flags.output != "-") PrintSummary(flags, calibration, result);

@@ -105,7 +105,7 @@ add_test(NAME cli.apply_imu_units_contradict_provenance
           $<TARGET_FILE:mpcal_cli>)
 set_tests_properties(cli.apply_imu_units_contradict_provenance PROPERTIES LABELS cli)
 add_test(NAME cli.apply_imu_units_given_on_the_command_line_win
-  COMMAND ${MPCAL_CLI_EXPECT} 0 "gyroscope from deg/s to deg/s"
+  COMMAND ${MPCAL_CLI_EXPECT} 0 "warning: the log's gyroscope was read in dps as --gyro-units says; the gyroscope of 'c.json' is for logs in rads"
           --workdir ${CMAKE_CURRENT_BINARY_DIR}/apply_imu_units_given_on_the_command_line_win
           -- sh -c "sed 's/--gyro-units rads/--gyro-units dps/' '${_imu1}' > c.json && \"$0\" simulate static --preset colibri --gyro --seed 1 --positions 12 --dwell 3 -o s.csv > /dev/null && exec \"$0\" apply c.json s.csv --gyro-units dps -o out.csv"
           $<TARGET_FILE:mpcal_cli>)
