@@ -39,5 +39,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::fprintf(stderr, "the round trip changed the parameters\n");
     std::abort();
   }
+  if (again.gyroscope.has_value() != c.gyroscope.has_value() ||
+      (c.gyroscope && (again.gyroscope->m != c.gyroscope->m ||
+                       again.gyroscope->bias_radps != c.gyroscope->bias_radps ||
+                       again.gyroscope->radps_per_unit != c.gyroscope->radps_per_unit))) {
+    std::fprintf(stderr, "the round trip changed the gyroscope\n");
+    std::abort();
+  }
   return 0;
 }

@@ -31,6 +31,32 @@ struct ApplyFlags {
   std::optional<GyroUnits> out_gyro_units;
 };
 
+// A file whose gyroscope block says rad/s while the command line it records
+// read the log in deg/s holds M and b in rad/s for logs in deg/s: read as
+// its block says, such a log would be corrected 57.3 times too large.
+// (A calibration made from a log in deg/s records 'dps' in its block.)
+void RefuseUnitsLostInProvenance(const std::string& path, const Calibration& c) {
+  if (!c.gyroscope || c.gyroscope->input_units != GyroUnits::kRadps || !c.provenance) {
+    return;
+  }
+  const std::string flag =
+      fmt::format("{} {}", FlagName(Option::kLogGyroUnits), ToString(GyroUnits::kDps));
+  const std::string& recorded = c.provenance->options;
+  const auto at = recorded.find(flag);
+  if (at == std::string::npos ||
+      (at + flag.size() < recorded.size() && recorded[at + flag.size()] != ' ')) {
+    return;
+  }
+  throw Error(ErrorKind::kUnits,
+              fmt::format("'{}': the gyroscope block is for logs in rad/s, but the file "
+                          "was calibrated from a log in deg/s ('{}' in its provenance); "
+                          "calibrate again, or give {} with the units of the log to "
+                          "correct",
+                          path,
+                          flag,
+                          FlagName(Option::kLogGyroUnits)));
+}
+
 // The options from the flags; what the user left out comes from the
 // calibration: a log from the calibrated sensor is in the calibration's units
 // and read as the log it was made from (columns, time unit, rate), so that no
@@ -54,8 +80,12 @@ ApplyOptions OptionsFor(const CLI::App& cmd,
   options.out_units = flags.out_units;
   options.out_gyro_units = flags.out_gyro_units;
   // Likewise the gyroscope columns: in the calibration's units unless told.
+  // A --gyro-units given wins, as --units does: it describes the log being
+  // corrected, and rad/s and deg/s convert exactly (counts and physical
+  // units do not: GyroCorrector refuses the mix).
   if (calibration.gyroscope &&
       cmd.count(std::string(FlagName(Option::kLogGyroUnits))) == 0) {
+    RefuseUnitsLostInProvenance(flags.calibration, calibration);
     options.log.gyro_in_counts = calibration.gyroscope->input_units == GyroUnits::kCounts;
     options.log.gyro_in_dps = calibration.gyroscope->input_units == GyroUnits::kDps;
   }
@@ -94,8 +124,12 @@ void PrintSummary(const ApplyFlags& flags,
              flags.output,
              ToString(result.out_units));
   if (result.gyro_corrected) {
-    fmt::print(", gyroscope in {}",
-               result.out_gyro_units == GyroUnits::kDps ? "deg/s" : "rad/s");
+    auto name = [](GyroUnits u) {
+      return u == GyroUnits::kDps ? "deg/s" : u == GyroUnits::kRadps ? "rad/s" : "counts";
+    };
+    fmt::print(", gyroscope from {} to {}",
+               name(result.log_gyro_units),
+               name(result.out_gyro_units));
   }
   if (result.rest_magnitude_mps2) {
     fmt::print("; |a| at rest {:.5f} m/s², gravity {:.5f} m/s²",
@@ -120,6 +154,18 @@ void RunApply(const CLI::App& cmd, const ApplyFlags& flags) {
   progress.Done();
   PrintWarnings(result.warnings);
   if (result.rest_mismatch) PrintWarnings({ExplainRestMismatch(*result.rest_mismatch)});
+  // The flag wins over the file; a flag that differs from it is said, in
+  // case it was a slip.
+  if (result.gyro_corrected &&
+      result.log_gyro_units != calibration.gyroscope->input_units) {
+    PrintWarnings({fmt::format(
+        "the log's gyroscope was read in {} as {} says; the gyroscope of '{}' is for "
+        "logs in {}",
+        ToString(result.log_gyro_units),
+        FlagName(Option::kLogGyroUnits),
+        flags.calibration,
+        ToString(calibration.gyroscope->input_units))});
+  }
   // Standard output may be the corrected log itself: the summary goes there
   // only when the log went to a file.
   if (flags.output != "-") PrintSummary(flags, calibration, result);
@@ -169,7 +215,8 @@ void AddApplyCommand(CLI::App& root) {
       "  mpcal apply calib.json session.csv -o corrected.csv\n"
       "  logger | mpcal apply calib.json - -o - --out-units g | plot\n"
       "  mpcal apply imu.json imu_session.csv -o corrected.csv --out-gyro-units dps\n"
-      "The log is read with the calibration's units unless --units is given, and with "
+      "The log is read with the calibration's units unless --units is given (and its\n"
+      "gyroscope in the calibration's units unless --gyro-units is given), and with "
       "the\n"
       "columns, time unit and rate the calibration was made with unless --columns,\n"
       "--time-unit or --rate is given; a log whose magnitude at rest is far from the\n"

@@ -27,7 +27,7 @@ namespace {
 struct CalibrateFlags {
   std::string input;
   std::string output;
-  std::string gyro_log;
+  GyroLogFlags gyro_log;
   LogOptions log;
   GravityFlags gravity;
   CalibrateOptions calibrate;
@@ -48,11 +48,10 @@ std::string DescribeOptions(const CalibrateFlags& f) {
              f.calibrate.detect.settle_s,
              f.calibrate.detect.threshold_factor,
              f.log.columns.empty() ? "" : " --columns " + f.log.columns) +
-         (f.gyro_log.empty() ? "" : " --gyro-log " + f.gyro_log) +
+         (f.gyro_log.path.empty() ? "" : " --gyro-log " + f.gyro_log.path) +
+         (f.gyro_log.columns.empty() ? "" : " --gyro-columns " + f.gyro_log.columns) +
          fmt::format(" --gyro-units {} --gyro-g-sensitivity {}",
-                     ToString(f.log.gyro_in_counts ? GyroUnits::kCounts
-                              : f.log.gyro_in_dps  ? GyroUnits::kDps
-                                                   : GyroUnits::kRadps),
+                     ToString(f.log.gyro_units()),
                      ToString(f.calibrate.gyro.g_sensitivity));
 }
 
@@ -99,13 +98,8 @@ std::optional<Calibration::InputLayout> RecordedLayout(const std::string& input,
   return out;
 }
 
-GyroUnits GyroUnitsOf(const LogOptions& log) {
-  if (log.gyro_in_counts) return GyroUnits::kCounts;
-  return log.gyro_in_dps ? GyroUnits::kDps : GyroUnits::kRadps;
-}
-
 void Run(CalibrateFlags& f) {
-  if (!f.output.empty()) CheckOutput(f.output, {f.input, f.gyro_log});
+  if (!f.output.empty()) CheckOutput(f.output, {f.input, f.gyro_log.path});
   f.calibrate.solve.gravity_mps2 = f.gravity.Resolve();
   ThrowIfInvalid(f.calibrate.Validate(), "calibrate");
 
@@ -117,15 +111,7 @@ void Run(CalibrateFlags& f) {
   Recording recording = ReadLog(f.input, f.log);
   progress.Done();
   PrintWarnings(recording.warnings);
-  if (!f.gyro_log.empty()) {
-    // The gyroscope's own file: t, x, y, z, row by row with the input.
-    LogOptions gyro_options;
-    gyro_options.time_unit = f.log.time_unit;
-    gyro_options.rate_hz = f.log.rate_hz;
-    const Recording gyro = ReadLog(f.gyro_log, gyro_options);
-    PrintWarnings(gyro.warnings);
-    MergeGyroLog(recording, gyro, GyroUnitsOf(f.log));
-  }
+  PrintWarnings(MergeGyroLogFile(recording, f.gyro_log, f.log));
 
   if (f.calibrate.counts_per_g > 0.0 && f.log.units != AccelUnits::kCounts) {
     throw Error("--counts-per-g is the scale of raw counts: it goes with --units counts");
@@ -158,7 +144,15 @@ void Run(CalibrateFlags& f) {
     fmt::print("{}", FormatGyroSummary(*result.gyro));
   }
   PrintWarnings(result.warnings);
-  if (result.gyro) PrintWarnings(GyroFindingMessages(*result.gyro));
+  if (result.gyro) {
+    // The file says what the command says: a gyroscope that is not
+    // calibrated has no block in it (CalibrateRecording), and why is among
+    // its warnings.
+    const std::vector<std::string> gyro_lines = GyroFindingMessages(*result.gyro);
+    PrintWarnings(gyro_lines);
+    std::vector<std::string>& kept = result.calibration.warnings;
+    kept.insert(kept.end(), gyro_lines.begin(), gyro_lines.end());
+  }
   if (!result.solve.converged()) {
     throw Error(
         fmt::format("{}: the fit did not converge ({}); no calibration written. "
@@ -189,12 +183,7 @@ void AddCalibrateCommand(CLI::App& root) {
                   "Calibration file to write (JSON: mpcal.imu/1 with the gyroscope, "
                   "mpcal.accelerometer/1 without); without it, only print")
       ->check(OutputPath);
-  app->add_option(
-         "--gyro-log",
-         flags->gyro_log,
-         "The gyroscope in a file of its own (t, x, y, z; the same rows as INPUT, "
-         "in --gyro-units)")
-      ->group("Input log");
+  AddGyroLogOptions(*app, flags->gyro_log);
   AddLogOptions(*app, flags->log);
   app->add_option(
          "--gyro-window",

@@ -7,6 +7,7 @@
 #include "explain.h"
 #include "mpcal/error.h"
 #include "mpcal/gravity.h"
+#include "mpcal/gyro_log.h"
 #include "mpcal/plausible.h"
 
 namespace mpcal::cli {
@@ -123,6 +124,39 @@ void AddLogOptions(CLI::App& app, LogOptions& options, const CountsHelp& counts)
                  "The sensor_msgs/Imu topic when the input is a ROS 1 bag, an MCAP file "
                  "or a ROS 2 bag directory; default: its only IMU topic")
       ->group("Input log");
+}
+
+void AddGyroLogOptions(CLI::App& app, GyroLogFlags& flags) {
+  CLI::Option* log =
+      app.add_option(std::string(FlagName(Option::kGyroLog)),
+                     flags.path,
+                     "The gyroscope in a file of its own, the same rows as "
+                     "the log, in --gyro-units: a time column and three "
+                     "readings, named by its header (t, gx/gyr_x/wx/x, ...) "
+                     "or --gyro-columns, else t, x, y, z in order")
+          ->check(InputPath)
+          ->group("Input log");
+  app.add_option(std::string(FlagName(Option::kGyroLogColumns)),
+                 flags.columns,
+                 "Column mapping of the --gyro-log file t=NAME|INDEX,gx=..,gy=..,gz=.. "
+                 "(0-based indices); default: from its header, else t, x, y, z")
+      ->needs(log)
+      ->group("Input log");
+}
+
+std::vector<std::string> MergeGyroLogFile(Recording& recording,
+                                          const GyroLogFlags& flags,
+                                          const LogOptions& log) {
+  if (flags.path.empty()) return {};
+  LogOptions options;
+  options.columns = flags.columns;
+  options.time_unit = log.time_unit;
+  options.rate_hz = log.rate_hz;
+  options.gyro_in_dps = log.gyro_in_dps;
+  options.gyro_in_counts = log.gyro_in_counts;
+  const Recording gyro = ReadGyroLog(flags.path, options);
+  MergeGyroLog(recording, gyro, log.gyro_units());
+  return gyro.warnings;
 }
 
 double GravityFlags::Resolve() const {

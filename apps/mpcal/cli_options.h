@@ -33,6 +33,21 @@ void AddLogOptions(CLI::App& app,
                    LogOptions& options,
                    const CountsHelp& counts = kCalibrateCounts);
 
+/// --gyro-log FILE [--gyro-columns MAP]: the gyroscope in a file of its own,
+/// row by row with the main log. One declaration, one check (an empty name
+/// is a usage error; a missing file an input error, as for the main log).
+struct GyroLogFlags {
+  std::string path;     ///< empty: not given
+  std::string columns;  ///< LogOptions::columns of the gyroscope's log
+};
+void AddGyroLogOptions(CLI::App& app, GyroLogFlags& flags);
+/// With --gyro-log: reads the file (ReadGyroLog: the main log's time unit,
+/// rate and gyroscope units, its own columns) and merges it into
+/// `recording` (MergeGyroLog). Returns the gyroscope log's warnings.
+std::vector<std::string> MergeGyroLogFile(Recording& recording,
+                                          const GyroLogFlags& flags,
+                                          const LogOptions& log);
+
 /// --gravity | --latitude [--height]: the local magnitude of gravity.
 struct GravityFlags {
   std::optional<double> gravity_mps2;

@@ -25,7 +25,7 @@ namespace {
 struct DetectFlags {
   std::string input;
   std::string json;
-  std::string gyro_log;
+  GyroLogFlags gyro_log;
   LogOptions log;
   GravityFlags gravity;
   CalibrateOptions calibrate;
@@ -156,11 +156,6 @@ void PrintCoverage(const CoverageResult& cov, const CoverageOptions& o) {
              cov.observability);
 }
 
-GyroUnits GyroUnitsOf(const LogOptions& log) {
-  if (log.gyro_in_counts) return GyroUnits::kCounts;
-  return log.gyro_in_dps ? GyroUnits::kDps : GyroUnits::kRadps;
-}
-
 // The turns between the positions, as the gyroscope measured them.
 // `logged`: the gyroscope's units in the log (a log in deg/s is read as rad/s).
 void PrintTurns(const Recording& rec,
@@ -201,20 +196,14 @@ void PrintTurns(const Recording& rec,
 
 void Run(DetectFlags& f) {
   ThrowIfInvalid(f.calibrate.detect.Validate(), "detect");
-  if (!f.json.empty()) CheckOutput(f.json, {f.input, f.gyro_log});
+  if (!f.json.empty()) CheckOutput(f.json, {f.input, f.gyro_log.path});
 
   TerminalProgress progress("reading " + f.input);
   f.log.progress = progress.Callback();
   Recording rec = ReadLog(f.input, f.log);
   progress.Done();
-  if (!f.gyro_log.empty()) {
-    // The gyroscope's own file: t, x, y, z, row by row with the input.
-    LogOptions gyro_options;
-    gyro_options.time_unit = f.log.time_unit;
-    gyro_options.rate_hz = f.log.rate_hz;
-    const Recording gyro = ReadLog(f.gyro_log, gyro_options);
-    for (const auto& w : gyro.warnings) fmt::print("  note: {}\n", w);
-    MergeGyroLog(rec, gyro, GyroUnitsOf(f.log));
+  for (const auto& w : MergeGyroLogFile(rec, f.gyro_log, f.log)) {
+    fmt::print("  note: {}\n", w);
   }
   WithDetectWords([&] { CheckUnits(rec, f.gravity.Resolve()); });
 
@@ -240,7 +229,7 @@ void Run(DetectFlags& f) {
   PrintDetection(rec, det, o);
   for (const auto& n : det.notes) fmt::print("  note: {}\n", ExplainNote(n));
   PrintIntervals(rec, det, cov);
-  PrintTurns(rec, turns, gyro_scale, GyroUnitsOf(f.log));
+  PrintTurns(rec, turns, gyro_scale, f.log.gyro_units());
   PrintCoverage(cov, co);
 
   if (!f.json.empty()) {
@@ -277,11 +266,7 @@ void AddDetectCommand(CLI::App& root) {
                   flags->json,
                   "Also write the intervals and the coverage as JSON (mpcal.detection/1)")
       ->check(OutputPath);
-  app->add_option("--gyro-log",
-                  flags->gyro_log,
-                  "The gyroscope's readings in a file of their own (t, x, y, z; the same "
-                  "rows as INPUT), to report the turns between the positions")
-      ->check(CLI::ExistingFile);
+  AddGyroLogOptions(*app, flags->gyro_log);
   AddLogOptions(*app, flags->log);
   AddGravityOptions(*app, flags->gravity);
   AddCalibrateOptions(*app, flags->calibrate);

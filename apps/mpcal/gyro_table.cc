@@ -146,6 +146,10 @@ std::string FormatGyroSummary(const GyroResult& r) {
 
 std::vector<std::string> GyroFindingMessages(const GyroResult& r) {
   std::vector<std::string> out;
+  if (r.status == GyroStatus::kNoConvergence) {
+    out.push_back(fmt::format("gyroscope not calibrated: the fit did not converge ({})",
+                              r.message));
+  }
   for (const GyroFinding& f : r.findings) {
     std::vector<std::string> names;
     for (int p : f.parameters)

@@ -24,7 +24,8 @@ std::string FormatGyroTable(const GyroCalibration& gyro,
 /// Turns, convergence and the RMS tilt before/after, a few lines.
 std::string FormatGyroSummary(const GyroResult& result);
 
-/// Each finding as a sentence naming the entries of M and the turns to add.
+/// Each finding as a sentence naming the entries of M and the turns to add;
+/// first, when the fit did not converge, a line saying so.
 std::vector<std::string> GyroFindingMessages(const GyroResult& result);
 
 /// `mpcal repeat` over IMU files or logs with a gyroscope: per entry of M

@@ -149,8 +149,10 @@ struct ApplyResult {
   /// Comment, header and blank lines copied.
   std::size_t other_lines = 0;
   AccelUnits out_units = AccelUnits::kMps2;
-  /// Whether the gyroscope columns were corrected too, and in which units.
+  /// Whether the gyroscope columns were corrected too, the units they were
+  /// read in (options.log's) and written in.
   bool gyro_corrected = false;
+  GyroUnits log_gyro_units = GyroUnits::kRadps;
   GyroUnits out_gyro_units = GyroUnits::kRadps;
   /// Median corrected |a| (m/s²) over the quietest stretches of the log's
   /// start (up to about 260,000 rows); empty when the log has no rows.

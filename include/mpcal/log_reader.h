@@ -88,6 +88,17 @@ struct LogOptions {
   /// known. Empty: no progress reports.
   std::function<void(double fraction)> progress;
 
+  /// The log is a gyroscope's file of its own (gyro_log.h): its three
+  /// reading columns (held in Recording::accel) are named by the header as a
+  /// gyroscope's (gx, gyr_x, wx, x, ... and y, z), and `columns` maps them
+  /// with the keys t, gx, gy, gz.
+  bool gyroscope_only = false;
+  /// The gyroscope columns' units as gyro_in_dps and gyro_in_counts say.
+  GyroUnits gyro_units() const {
+    if (gyro_in_counts) return GyroUnits::kCounts;
+    return gyro_in_dps ? GyroUnits::kDps : GyroUnits::kRadps;
+  }
+
   /// Empty string when valid, otherwise names the first bad field.
   std::string Validate() const;
 };

@@ -55,4 +55,32 @@ inline constexpr double kMaxNonOrthogonalityRad = 0.7853981633974483;
 inline constexpr double kMinCountsPerG = 1e-3;
 inline constexpr double kMaxCountsPerG = 2147483648.0;
 
+/// The largest angular rate any MEMS gyroscope reports: 4000 °/s full scale
+/// (about 70 rad/s). A reading in rad/s beyond it holds deg/s or counts.
+inline constexpr double kMaxGyroRateRadps = 4000.0 * 0.017453292519943295;
+/// A gyroscope's calibration (gyro_calibration.h), ω = M (r·k − b − G f):
+/// - its bias b cannot exceed the full scale it is measured on (4000 °/s):
+///   consumer parts stay within a few °/s, and a bias beyond full scale is a
+///   deg/s log read as rad/s or a corrupt file; for raw counts b is the ADC's
+///   offset, within kMaxReadingCounts counts;
+/// - M's diagonal is a scale 1 + s with |s| < kMaxScaleFactorError, as for
+///   the accelerometer (relative to the nominal scale k);
+/// - its off-diagonal terms are small angles (misalignment of the triad and
+///   its rotation against the accelerometer's, rad): beyond 0.5 the two
+///   triads are not mounted together, or the fit diverged;
+/// - a 1σ of M beyond kMaxScaleFactorError says nothing about the sensor;
+/// - the bias's g-sensitivity G: datasheets give 0.01-0.1 °/s per g, the
+///   worst parts below 1; 10 °/s per g (0.0178 rad/s per m/s²) leaves margin.
+inline constexpr double kMaxGyroBiasRadps = kMaxGyroRateRadps;
+inline constexpr double kMaxGyroMisalignment = 0.5;
+inline constexpr double kMaxGyroGSensitivityRadpsPerMps2 =
+    10.0 * 0.017453292519943295 / kStandardGravityMps2;
+/// Counts per rad/s of a raw-counts gyroscope: 1e-3 (a float "count") to
+/// 2^31, as for the accelerometer (kMinCountsPerG, kMaxCountsPerG).
+inline constexpr double kMinCountsPerRadps = 1e-3;
+inline constexpr double kMaxCountsPerRadps = 2147483648.0;
+/// A sample period (s) between 1 µs (1 MHz) and one hour.
+inline constexpr double kMinSamplePeriodS = 1e-6;
+inline constexpr double kMaxSamplePeriodS = 3600.0;
+
 }  // namespace mpcal

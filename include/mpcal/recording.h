@@ -26,6 +26,11 @@ struct Recording {
   /// kRadps for readings in rad/s (logs in deg/s are converted on reading),
   /// kCounts for raw counts.
   GyroUnits gyro_units = GyroUnits::kRadps;
+  /// Units of the gyroscope columns as the log writes them: kDps for a log
+  /// in deg/s (held in rad/s above), else as `gyro_units`. A calibration
+  /// made from the recording records them, so that it applies to logs as
+  /// they are written.
+  GyroUnits gyro_log_units = GyroUnits::kRadps;
   AccelUnits units = AccelUnits::kMps2;
   /// Where it came from (file name, or "<simulated>"), for messages.
   std::string source;

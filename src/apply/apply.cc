@@ -30,12 +30,11 @@ std::optional<GyroCorrector> MakeGyroCorrector(const Calibration& calibration,
                                                const ApplyOptions& options,
                                                ApplyResult& result) {
   if (!calibration.gyroscope || !layout.has_gyro()) return std::nullopt;
-  const GyroUnits log_gyro = options.log.gyro_in_counts ? GyroUnits::kCounts
-                             : options.log.gyro_in_dps  ? GyroUnits::kDps
-                                                        : GyroUnits::kRadps;
+  const GyroUnits log_gyro = options.log.gyro_units();
   result.out_gyro_units = options.out_gyro_units.value_or(
       log_gyro == GyroUnits::kCounts ? GyroUnits::kRadps : log_gyro);
   result.gyro_corrected = true;
+  result.log_gyro_units = log_gyro;
   return GyroCorrector(*calibration.gyroscope, log_gyro, result.out_gyro_units);
 }
 

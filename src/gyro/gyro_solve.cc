@@ -16,6 +16,7 @@
 #include "gyro_observability.h"
 #include "mpcal/error.h"
 #include "mpcal/gyro.h"
+#include "mpcal/plausible.h"
 #include "rotation.h"
 #include "turn_problem.h"
 #include "turn_weights.h"
@@ -31,8 +32,10 @@ using RowMajor3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
 // tilt to estimate the nominal scale of raw counts from.
 constexpr double kMinScaleTurnRad = 20.0 * std::numbers::pi / 180.0;
 // Beyond these the fit has left the region where the model means anything.
-constexpr double kMaxPlausibleScaleError = 0.5;
-constexpr double kMaxPlausibleMisalignment = 0.5;
+// What a gyroscope's M can be (plausible.h): the file's reader refuses the
+// rest, so the fit does not offer it.
+constexpr double kMaxPlausibleScaleError = kMaxScaleFactorError;
+constexpr double kMaxPlausibleMisalignment = kMaxGyroMisalignment;
 // The a-priori noise level counts as this many residuals of evidence in the
 // variance factor (solve.cc uses the same rule for the accelerometer).
 constexpr double kPriorDof = 10.0;
@@ -186,6 +189,21 @@ bool Plausible(const Eigen::Matrix3d& m) {
   return true;
 }
 
+// The rest of what the file's reader accepts (plausible.h): every 1σ of M
+// below kMaxScaleFactorError, G within 10 °/s per g.
+bool PlausibleSpread(const GyroCalibration& c) {
+  if (c.m_covariance) {
+    for (int i = 0; i < 9; ++i) {
+      if (!((*c.m_covariance)(i, i) < kMaxScaleFactorError * kMaxScaleFactorError)) {
+        return false;
+      }
+    }
+  }
+  return !c.g_sensitivity_radps_per_mps2 ||
+         c.g_sensitivity_radps_per_mps2->cwiseAbs().maxCoeff() <=
+             kMaxGyroGSensitivityRadpsPerMps2;
+}
+
 // The Moore-Penrose inverse of the information (the covariance of the
 // entries it determines; directions it does not determine get none).
 Eigen::Matrix<double, 9, 9> PseudoInverse(
@@ -327,13 +345,25 @@ void Finish(const TurnProblem& problem,
   fit.noise_std_radps = problem.noise_std_raw * scale;
   fit.sample_period_s = problem.sample_period_s;
   const bool plausible = Plausible(c.m);
-  fit.converged = summary.termination_type == ceres::CONVERGENCE && plausible;
+  const bool plausible_spread = PlausibleSpread(c);
+  fit.converged =
+      summary.termination_type == ceres::CONVERGENCE && plausible && plausible_spread;
   c.fit = fit;
   result->status = fit.converged ? GyroStatus::kConverged : GyroStatus::kNoConvergence;
-  result->message = plausible
-                        ? summary.message
-                        : "the estimate left the plausible range (|scale - 1| < 0.5, "
-                          "|misalignment| < 0.5): the solver diverged";
+  // The turns may determine M at the nominal start and not at the estimate
+  // (a log in deg/s read as rad/s turns 57 times too far): such an M is
+  // not a calibration, whatever the solver says.
+  for (const GyroFinding& f : result->findings) {
+    if (f.kind == GyroFindingKind::kUndetermined)
+      result->status = GyroStatus::kUndetermined;
+  }
+  result->message =
+      !plausible ? "the estimate left the plausible range (|scale - 1| < 0.5, "
+                   "|misalignment| < 0.5): the solver diverged"
+      : !plausible_spread
+          ? "the estimate's 1σ of M (0.5 or more) or its bias's g-sensitivity "
+            "(beyond 10 deg/s per g) is not a sensor's"
+          : summary.message;
 }
 
 }  // namespace
@@ -398,7 +428,13 @@ GyroResult CalibrateGyroscope(const Recording& recording,
   GyroResult result;
   result.directions =
       internal::WeighTurns(recording, intervals, accel, carry_scale, &problem);
-  result.calibration.input_units = recording.gyro_units;
+  // The file records the units of the log's columns as written, so that it
+  // applies to the logs as written: a log in deg/s is held in rad/s
+  // (Recording::gyro_radps), and its nominal factor to rad/s is π/180.
+  const bool counts = recording.gyro_units == GyroUnits::kCounts;
+  result.calibration.input_units = counts ? GyroUnits::kCounts : recording.gyro_log_units;
+  const double held_per_log_unit =
+      counts ? 1.0 : FixedRadpsPerUnit(recording.gyro_log_units).value_or(1.0);
   result.turns = DescribeTurns(problem);
   if (problem.turns.size() < kMinTurns) {
     result.findings.push_back(TooFewTurns(problem.turns.size()));
@@ -410,7 +446,7 @@ GyroResult CalibrateGyroscope(const Recording& recording,
   // M's diagonal (relative to it) absorbs, at twice the cost of the solve.
   const double scale =
       carry_scale > 0.0 ? carry_scale : ResolveScale(recording, options, problem);
-  result.calibration.radps_per_unit = scale;
+  result.calibration.radps_per_unit = scale * held_per_log_unit;
 
   // Before: nominal scale and per-position bias. The observability is asked
   // before solving: a solver let loose on an undetermined problem wanders off.
@@ -451,9 +487,9 @@ Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const Recording& recording,
       GyroOptions().direction_window_s,
       truth.g_sensitivity_radps_per_mps2 ? GSensitivity::kOn : GSensitivity::kOff,
       GyroOptions().g_sensitivity_min_f,
-      truth.radps_per_unit);
-  internal::WeighTurns(recording, intervals, accel, truth.radps_per_unit, &problem);
-  const double scale = truth.radps_per_unit;
+      internal::HeldRadpsPerUnit(recording, truth));
+  const double scale = internal::HeldRadpsPerUnit(recording, truth);
+  internal::WeighTurns(recording, intervals, accel, scale, &problem);
   const Eigen::MatrixXd j = EvaluateTurns(problem, truth.m * scale, scale).jacobian;
   const Eigen::MatrixXd information = j.transpose() * j;
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(information);

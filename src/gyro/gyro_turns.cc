@@ -14,7 +14,7 @@ std::vector<GyroTurn> ScoreGyroTurns(const Recording& recording,
                                      std::span<const StaticInterval> intervals,
                                      const Calibration& accel,
                                      const GyroCalibration& gyro) {
-  const double scale = gyro.radps_per_unit > 0.0 ? gyro.radps_per_unit : 1.0;
+  const double scale = internal::HeldRadpsPerUnit(recording, gyro);
   const GyroOptions defaults;
   internal::TurnProblem problem = internal::BuildTurnProblem(
       recording,

@@ -20,6 +20,15 @@
 
 namespace mpcal::internal {
 
+/// rad/s per unit of the readings `recording` holds, for a calibration
+/// `gyro` of its gyroscope: the calibration's nominal scale for raw counts,
+/// 1 otherwise (a log in deg/s is held in rad/s, whatever units the
+/// calibration was recorded in).
+inline double HeldRadpsPerUnit(const Recording& recording, const GyroCalibration& gyro) {
+  if (recording.gyro_units != GyroUnits::kCounts) return 1.0;
+  return gyro.radps_per_unit > 0.0 ? gyro.radps_per_unit : 1.0;
+}
+
 /// The last evaluations of one turn at an effective matrix M: its rotation
 /// and the right perturbation per entry of M (3 × 9), or along one direction
 /// of M (3 × 1). The solver asks for the residual at a candidate M and, once

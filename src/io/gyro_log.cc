@@ -9,6 +9,15 @@
 
 namespace mpcal {
 
+Recording ReadGyroLog(const std::string& path, LogOptions options) {
+  options.gyroscope_only = true;
+  // The reader bounds each reading by its units (plausible.h): a gyroscope's
+  // counts may span the ADC's range, a rate in rad/s or deg/s stays far
+  // below the bound of m/s².
+  options.units = options.gyro_in_counts ? AccelUnits::kCounts : AccelUnits::kMps2;
+  return ReadLog(path, options);
+}
+
 void MergeGyroLog(Recording& recording, const Recording& gyro_log, GyroUnits units) {
   if (!recording.gyro_radps.empty()) {
     throw Error(
@@ -53,6 +62,7 @@ void MergeGyroLog(Recording& recording, const Recording& gyro_log, GyroUnits uni
                  [scale](const Eigen::Vector3d& v) { return (v * scale).eval(); });
   recording.gyro_units =
       units == GyroUnits::kCounts ? GyroUnits::kCounts : GyroUnits::kRadps;
+  recording.gyro_log_units = units;
 }
 
 }  // namespace mpcal

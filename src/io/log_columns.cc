@@ -211,6 +211,41 @@ namespace {
 
 using ColumnOfRole = std::array<int, 8>;
 
+// What a log's columns are called and which option maps them: a log's
+// (ax, ay, az, and gx, gy, gz), or a gyroscope's own log, whose three reading
+// columns take the accelerometer's places (kAx...) under the names gx, gy, gz.
+struct Naming {
+  const char* const* keys;
+  Option option;
+  Role (*role_of)(std::string_view name);
+  bool gyroscope_only;
+};
+
+constexpr const char* kGyroLogKeys[] = {"", "t", "gx", "gy", "gz", "", "", ""};
+
+// A gyroscope log's header: gx/gyr_x/gyro_x as in any log, and the bare axis
+// names gyroscope loggers use alone (x, wx, omega_x, rate_x).
+Role GyroLogRoleOfName(std::string_view name) {
+  const Role r = RoleOfName(name);
+  if (r >= kGx && r <= kGz) return static_cast<Role>(kAx + (r - kGx));
+  if (r != kTime) {
+    const std::string n = NormaliseName(name);
+    const char* axes = "xyz";
+    for (int i = 0; i < 3; ++i) {
+      for (std::string prefix :
+           {"", "w", "omega", "rate", "angularrate", "angularvelocity"}) {
+        if (n == prefix + axes[i]) return static_cast<Role>(kAx + i);
+      }
+    }
+    return kNone;
+  }
+  return r;
+}
+
+const Naming kLogNaming{kRoleKeys, Option::kLogColumns, &RoleOfName, false};
+const Naming kGyroLogNaming{
+    kGyroLogKeys, Option::kGyroLogColumns, &GyroLogRoleOfName, true};
+
 std::string InHeader(const LogLayout& layout) {
   return layout.header_line > 0
              ? fmt::format(" in the header (line {})", layout.header_line)
@@ -219,7 +254,7 @@ std::string InHeader(const LogLayout& layout) {
 
 // The index of the header column `spec` names: exact (any case) first, then
 // as RoleOfName compares names.
-int ColumnNamed(const LogLayout& layout, const ColumnSpec& spec) {
+int ColumnNamed(const LogLayout& layout, const ColumnSpec& spec, const Naming& naming) {
   const auto& names = layout.column_names;
   const std::string wanted = Lower(spec.name);
   int index = -1;
@@ -234,12 +269,12 @@ int ColumnNamed(const LogLayout& layout, const ColumnSpec& spec) {
     throw Error(ErrorKind::kColumns,
                 fmt::format("columns {}={}: the header (line {}) has no column "
                             "'{}'; its columns are: {}",
-                            kRoleKeys[spec.role],
+                            naming.keys[spec.role],
                             spec.name,
                             layout.header_line,
                             spec.name,
                             fmt::join(names, ", ")),
-                Give({{Option::kLogColumns, ""}}));
+                Give({{naming.option, ""}}));
   }
   return index;
 }
@@ -247,12 +282,13 @@ int ColumnNamed(const LogLayout& layout, const ColumnSpec& spec) {
 // The header's names, then the explicit mapping over them.
 void MapFromHeader(const std::string& source,
                    std::vector<ColumnSpec> specs,
+                   const Naming& naming,
                    LogOptions* options,
                    LogLayout* layout,
                    ColumnOfRole* column) {
   int sample_index_column = -1;
   for (int c = 0; c < static_cast<int>(layout->column_names.size()); ++c) {
-    const Role r = RoleOfName(layout->column_names[c]);
+    const Role r = naming.role_of(layout->column_names[c]);
     if (r != kNone && (*column)[r] < 0) (*column)[r] = c;
     if (r == kNone && sample_index_column < 0 &&
         IsSampleIndexName(layout->column_names[c])) {
@@ -260,7 +296,7 @@ void MapFromHeader(const std::string& source,
     }
   }
   for (auto& spec : specs) {
-    if (spec.index < 0) spec.index = ColumnNamed(*layout, spec);
+    if (spec.index < 0) spec.index = ColumnNamed(*layout, spec, naming);
     (*column)[spec.role] = spec.index;
   }
   if ((*column)[kTime] < 0 && sample_index_column >= 0) {
@@ -277,6 +313,17 @@ void MapFromHeader(const std::string& source,
                               layout->column_names[sample_index_column]),
                   Give({{Option::kLogRate, ""}, {Option::kLogTimeUnit, "s"}}));
     }
+  }
+  if ((*column)[kAx] < 0 && (*column)[kAy] < 0 && (*column)[kAz] < 0 &&
+      naming.gyroscope_only) {
+    throw Error(
+        ErrorKind::kColumns,
+        fmt::format("{}:{}: the header names no gyroscope columns (found: {}); "
+                    "expected gx/gyr_x/wx/x (and y, z), or a mapping of the columns",
+                    source,
+                    layout->header_line,
+                    fmt::join(layout->column_names, ", ")),
+        Give({{naming.option, "t=NAME,gx=NAME,gy=NAME,gz=NAME"}}));
   }
   if ((*column)[kAx] < 0 && (*column)[kAy] < 0 && (*column)[kAz] < 0) {
     throw Error(
@@ -296,6 +343,7 @@ void MapFromHeader(const std::string& source,
 void MapWithoutHeader(const std::string& source,
                       const std::vector<ColumnSpec>& specs,
                       std::size_t data_columns,
+                      const Naming& naming,
                       const LogOptions& options,
                       ColumnOfRole* column) {
   for (const auto& spec : specs) {
@@ -304,10 +352,10 @@ void MapWithoutHeader(const std::string& source,
           ErrorKind::kColumns,
           fmt::format("columns {}={}: the log '{}' has no header line "
                       "naming its columns, so the mapping needs 0-based column indices",
-                      kRoleKeys[spec.role],
+                      naming.keys[spec.role],
                       spec.name,
                       source),
-          Give({{Option::kLogColumns, fmt::format("{}=1", kRoleKeys[spec.role])}}));
+          Give({{naming.option, fmt::format("{}=1", naming.keys[spec.role])}}));
     }
     (*column)[spec.role] = spec.index;
   }
@@ -328,14 +376,16 @@ void MapWithoutHeader(const std::string& source,
 // twice, and a time column or a rate.
 void CheckMapping(const std::string& source,
                   const LogLayout& layout,
+                  const Naming& naming,
                   const LogOptions& options,
                   const ColumnOfRole& column) {
   for (int r = kAx; r <= kAz; ++r) {
     if (column[r] < 0) {
       throw Error(
           ErrorKind::kColumns,
-          fmt::format("'{}': no column for {}{}", source, kRoleKeys[r], InHeader(layout)),
-          Give({{Option::kLogColumns, fmt::format("{}=NAME|INDEX", kRoleKeys[r])}}));
+          fmt::format(
+              "'{}': no column for {}{}", source, naming.keys[r], InHeader(layout)),
+          Give({{naming.option, fmt::format("{}=NAME|INDEX", naming.keys[r])}}));
     }
   }
   const int gyros = (column[kGx] >= 0) + (column[kGy] >= 0) + (column[kGz] >= 0);
@@ -354,8 +404,8 @@ void CheckMapping(const std::string& source,
         throw Error(ErrorKind::kColumns,
                     fmt::format("'{}': {} and {} are both column index {}",
                                 source,
-                                kRoleKeys[r],
-                                kRoleKeys[q],
+                                naming.keys[r],
+                                naming.keys[q],
                                 column[r]));
       }
     }
@@ -363,7 +413,7 @@ void CheckMapping(const std::string& source,
   if (column[kTime] < 0 && options.rate_hz <= 0.0) {
     throw Error(ErrorKind::kTime,
                 fmt::format("'{}': no time column{}", source, InHeader(layout)),
-                Give({{Option::kLogColumns, "t=NAME|INDEX"}, {Option::kLogRate, ""}}));
+                Give({{naming.option, "t=NAME|INDEX"}, {Option::kLogRate, ""}}));
   }
 }
 
@@ -374,20 +424,31 @@ void ResolveColumns(const std::string& source,
                     bool parse_gyro,
                     LogOptions* options,
                     LogLayout* layout) {
+  const Naming& naming = options->gyroscope_only ? kGyroLogNaming : kLogNaming;
   std::vector<ColumnSpec> specs;
-  const std::string problem = ParseColumnSpec(options->columns, &specs);
+  std::string problem = ParseColumnSpec(options->columns, &specs);
+  for (ColumnSpec& spec : specs) {
+    if (!naming.gyroscope_only || !problem.empty()) break;
+    // A gyroscope's own log is mapped with the gyroscope's keys; its
+    // readings take the accelerometer's places.
+    if (spec.role >= kAx && spec.role <= kAz) {
+      problem = fmt::format("key '{}' is not a gyroscope's (known: t, gx, gy, gz)",
+                            kRoleKeys[spec.role]);
+    } else if (spec.role >= kGx) {
+      spec.role = static_cast<Role>(kAx + (spec.role - kGx));
+    }
+  }
   if (!problem.empty()) {
-    throw Error(
-        ErrorKind::kOption, "columns: " + problem, Give({{Option::kLogColumns, ""}}));
+    throw Error(ErrorKind::kOption, "columns: " + problem, Give({{naming.option, ""}}));
   }
   ColumnOfRole column;
   column.fill(-1);
   if (layout->header_line > 0) {
-    MapFromHeader(source, std::move(specs), options, layout, &column);
+    MapFromHeader(source, std::move(specs), naming, options, layout, &column);
   } else {
-    MapWithoutHeader(source, specs, data_columns, *options, &column);
+    MapWithoutHeader(source, specs, data_columns, naming, *options, &column);
   }
-  CheckMapping(source, *layout, *options, column);
+  CheckMapping(source, *layout, naming, *options, column);
   layout->time_column = column[kTime];
   for (int i = 0; i < 3; ++i) {
     layout->accel_columns[i] = column[kAx + i];

@@ -221,6 +221,7 @@ LogStreamSummary ReadRows(const std::string& path,
   rec->units = options.units;
   rec->source = file.source();
   if (options.gyro_in_counts) rec->gyro_units = GyroUnits::kCounts;
+  rec->gyro_log_units = options.gyro_units();
   logio::RowConversion conversion;
   conversion.parser = &parser;
   conversion.time_scale = layout.seconds_per_time_unit;

@@ -120,6 +120,7 @@ void SampleStatic(const SimulateStaticOptions& options,
   if (options.gyro) {
     rec.gyro_radps.resize(plan.total);
     rec.gyro_units = options.gyro_units;
+    rec.gyro_log_units = options.gyro_units;
     session.true_rate_radps.resize(plan.total);
     session.gyro_noise_std_radps = gyro.sigma_radps();
   }

@@ -24,9 +24,9 @@ constexpr double kPlausibleRestRatioHigh = 1.6;
 // Rows between the magnitudes whose median is judged.
 constexpr std::size_t kMagnitudeStride = 16;
 
-// The largest full scale of MEMS gyroscopes (4000 deg/s, about 70 rad/s):
-// a log in rad/s that reaches beyond it holds deg/s (or counts).
-constexpr double kMaxGyroRadps = 4000.0 * std::numbers::pi / 180.0;
+// A log in rad/s that reaches beyond the largest full scale of MEMS
+// gyroscopes (kMaxGyroRateRadps, plausible.h) holds deg/s (or counts).
+constexpr double kMaxGyroRadps = kMaxGyroRateRadps;
 
 void CheckGyroUnits(const UnitsEvidence& e) {
   if (e.gyro_units != GyroUnits::kRadps || !e.has_gyro) return;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "mpcal/apply.h"
+#include "mpcal/calibrate.h"
 #include "mpcal/calibration_file.h"
 #include "mpcal/error.h"
 #include "mpcal/log_reader.h"
@@ -137,6 +138,36 @@ TEST(ImuFile, RoundTripsTheGyroscopeAndStillReadsAccelerometerFiles) {
   std::string broken = accel_only;
   broken.replace(broken.find("mpcal.accelerometer/1"), 21, "mpcal.imu/1");
   EXPECT_THROW(CalibrationFromJson(broken, "mem"), Error);
+}
+
+// A log in deg/s is held in rad/s; the calibration made from it records the
+// log's units (dps, π/180 rad/s per unit), so that it corrects the log as
+// written: the same M and bias as from the log in rad/s, and the same rates.
+TEST(CalibrateGyroscope, ALogInDegreesPerSecondIsRecordedAsSuch) {
+  const SimulatedSession s = Session(GyroUnits::kRadps);
+  Recording dps = s.recording;
+  dps.gyro_log_units = GyroUnits::kDps;  // as ReadLog holds a log in deg/s
+  const CalibrateResult in_rads = CalibrateRecording(s.recording, {});
+  const CalibrateResult in_dps = CalibrateRecording(dps, {});
+  ASSERT_TRUE(in_rads.calibration.gyroscope);
+  ASSERT_TRUE(in_dps.calibration.gyroscope);
+  const GyroCalibration& r = *in_rads.calibration.gyroscope;
+  const GyroCalibration& d = *in_dps.calibration.gyroscope;
+  EXPECT_EQ(r.input_units, GyroUnits::kRadps);
+  EXPECT_DOUBLE_EQ(r.radps_per_unit, 1.0);
+  EXPECT_EQ(d.input_units, GyroUnits::kDps);
+  EXPECT_DOUBLE_EQ(d.radps_per_unit, std::numbers::pi / 180.0);
+  EXPECT_TRUE(d.m.isApprox(r.m, 1e-12));
+  EXPECT_TRUE(d.bias_radps.isApprox(r.bias_radps, 1e-12));
+  // A turn's reading (rad/s held), as the log writes it in deg/s.
+  const std::size_t i = s.still_ranges[3].second + static_cast<std::size_t>(s.rate_hz);
+  const Eigen::Vector3d held = s.recording.gyro_radps[i];
+  ASSERT_GT(held.norm(), 0.1);
+  EXPECT_LT((d.Correct(held * 180.0 / std::numbers::pi) - r.Correct(held)).norm(), 1e-12);
+  // And the file keeps it.
+  const Calibration back =
+      CalibrationFromJson(CalibrationToJson(in_dps.calibration), "dps.json");
+  EXPECT_EQ(back.gyroscope->input_units, GyroUnits::kDps);
 }
 
 }  // namespace

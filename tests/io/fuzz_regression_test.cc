@@ -87,6 +87,85 @@ TEST(CalibrationFileFuzzRegression, IntegerFieldsOutOfRangeAreRejectedWithTheirN
   }
 }
 
+// An IMU file's gyroscope block out of the plausible ranges (plausible.h):
+// each is refused with the field's name instead of applied (an M of 1e308
+// corrected rates to 1e305 rad/s). The corpus holds the same cases
+// (tests/fuzz/calibration_file/gyro_*.json).
+TEST(CalibrationFileFuzzRegression, GyroscopeBlockOutsidePlausibleRangesIsRefused) {
+  const nlohmann::json valid =
+      nlohmann::json::parse(ReadFile(TestDataPath("imu_trial_1.json")));
+  ASSERT_TRUE(CalibrationFromJson(valid.dump(), "valid.json").gyroscope);
+  const nlohmann::json counts =
+      nlohmann::json::parse(ReadFile(TestDataPath("xsens_imu_half1.json")));
+  ASSERT_TRUE(CalibrationFromJson(counts.dump(), "counts.json").gyroscope);
+  struct Case {
+    const nlohmann::json* base;
+    nlohmann::json::json_pointer at;
+    nlohmann::json value;
+    std::string message;
+  };
+  using P = nlohmann::json::json_pointer;
+  const std::vector<Case> cases = {
+      {&valid, P("/gyroscope/m/0"), 1e308, "'gyroscope.m[0]' = 1e+308 is not a scale"},
+      {&valid, P("/gyroscope/m/4"), -1000.0, "'gyroscope.m[4]' = -1000 is not a scale"},
+      {&valid, P("/gyroscope/m/1"), 0.9, "'gyroscope.m[1]' = 0.9 is not a small angle"},
+      {&valid,
+       P("/gyroscope/bias_radps/2"),
+       1e9,
+       "'gyroscope.bias_radps[2]' = 1000000000"},
+      {&valid,
+       P("/gyroscope/bias_change_radps/0"),
+       -1.0,
+       "'gyroscope.bias_change_radps[0]'"},
+      {&valid, P("/gyroscope/std/bias_radps/1"), -1e-3, "'gyroscope.std.bias_radps[1]'"},
+      {&valid, P("/gyroscope/std/m/0"), 7.0, "'gyroscope.std.m[0]' = 7 is not a 1σ of M"},
+      {&valid, P("/gyroscope/m_covariance/0"), -1.0, "'gyroscope.m_covariance[0]'"},
+      {&valid, P("/gyroscope/m_covariance/1"), 1.0, "'gyroscope.m_covariance[1]'"},
+      {&valid,
+       P("/gyroscope/g_sensitivity_radps_per_mps2"),
+       nlohmann::json(std::vector<double>(9, 0.5)),
+       "'gyroscope.g_sensitivity_radps_per_mps2[0]' = 0.5 is beyond"},
+      {&valid, P("/gyroscope/position_bias/3/bias_radps/0"), -500.0, "position_bias[3]"},
+      {&valid,
+       P("/gyroscope/position_bias/3/t_s"),
+       1e20,
+       "'gyroscope.position_bias[3].t_s'"},
+      {&valid,
+       P("/gyroscope/input/radps_per_unit"),
+       2.0,
+       "but units 'rads' mean 1 rad/s"},
+      {&valid, P("/gyroscope/input/units"), "dps", "but units 'dps' mean 0.0174"},
+      {&counts, P("/gyroscope/input/radps_per_unit"), 1e9, "is not a gyroscope's scale"},
+      {&valid, P("/gyroscope/fit/residual_rms_after_rad"), -1.0, "not an angle"},
+      {&valid, P("/gyroscope/fit/noise_std_radps"), 1e300, "not a gyroscope's noise"},
+      {&valid, P("/gyroscope/fit/sample_period_s"), -0.01, "not a sample period"},
+      {&valid,
+       P("/gyroscope/fit/variance_factor"),
+       -2.0,
+       "'gyroscope.fit.variance_factor'"},
+      {&valid,
+       P("/gyroscope/fit/converged"),
+       false,
+       "'gyroscope.fit.converged' is false"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.at.to_string());
+    nlohmann::json j = *c.base;
+    j[c.at] = c.value;
+    try {
+      CalibrationFromJson(j.dump(), "bad.json");
+      FAIL() << "accepted " << c.value.dump();
+    } catch (const Error& e) {
+      EXPECT_THAT(e.what(), HasSubstr(c.message));
+    }
+  }
+  // Beyond a double, or not finite: not JSON numbers, refused by the parser.
+  std::string text = valid.dump();
+  const std::string m = "\"m\":[";
+  text.insert(text.find(m) + m.size(), "1e400,");
+  EXPECT_THROW(CalibrationFromJson(text, "inf.json"), Error);
+}
+
 TEST(CalibrationFileFuzzRegression, EveryCorpusInputReadsOrIsRejectedCleanly) {
   const auto files = Corpus("calibration_file");
   ASSERT_GE(files.size(), 5u);
@@ -99,6 +178,8 @@ TEST(CalibrationFileFuzzRegression, EveryCorpusInputReadsOrIsRejectedCleanly) {
       // What was read writes back and reads the same.
       const Calibration again = CalibrationFromJson(CalibrationToJson(c), "round-trip");
       EXPECT_EQ(ToVector(again.model), ToVector(c.model));
+      // The seeds gyro_*.json hold a gyroscope block out of its ranges.
+      EXPECT_FALSE(path.filename().string().starts_with("gyro_")) << "accepted";
       ++read;
     } catch (const Error&) {
       // rejected cleanly
