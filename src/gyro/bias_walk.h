@@ -1,7 +1,7 @@
 // The gyroscope bias's random walk between the static positions: how much
 // of it the linear interpolation of the rest biases across a turn leaves in
 // the turn's integrated angle, and its density estimated from the rest
-// biases themselves, so that each turn's weight holds it (issue 17).
+// biases themselves, so that each turn's weight holds it.
 #pragma once
 
 #include <span>

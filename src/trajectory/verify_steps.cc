@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "mpcal/count.h"
 #include "mpcal/error.h"
 #include "mpcal/units.h"
 
@@ -96,10 +97,10 @@ double CheckVerifyInputs(const Recording& imu,
   }
   const std::size_t n = imu.size();
   if (n < 3 || imu.accel.size() != n) {
-    throw Error(
-        ErrorKind::kInput,
-        fmt::format(
-            "{}: the IMU log has {} samples; a walk needs many more", imu.source, n));
+    throw Error(ErrorKind::kInput,
+                fmt::format("{}: the IMU log has {}; a walk needs many more",
+                            imu.source,
+                            Count(n, "sample")));
   }
   if (!imu.gyro_radps.empty() && imu.gyro_radps.size() != n) {
     throw Error(ErrorKind::kInput,
@@ -110,9 +111,9 @@ double CheckVerifyInputs(const Recording& imu,
   }
   if (reference.size() < 2) {
     throw Error(ErrorKind::kInput,
-                fmt::format("{}: the reference has {} epochs; a walk needs many more",
+                fmt::format("{}: the reference has {}; a walk needs many more",
                             reference.source,
-                            reference.size()));
+                            Count(reference.size(), "epoch")));
   }
   const std::optional<double> scale = FixedMps2PerUnit(imu.units);
   if (!scale) {
