@@ -132,17 +132,7 @@ VerifyResult Verify(const Recording& imu,
                               ? imu.time_s[still.initial_rest_end - 1] - imu.time_s[0]
                               : 0.0;
   result.stops = static_cast<int>(still.intervals.size());
-  // At rest throughout, the zero-velocity updates hold both trajectories at
-  // their start: a start-to-end distance of 0 m would pass for a perfect
-  // calibration.
-  if (std::find(still.still.begin(), still.still.end(), false) == still.still.end()) {
-    throw Error(ErrorKind::kInput,
-                fmt::format("{}: the IMU never moves: the still test finds it at rest "
-                            "over all {:.1f} s of the log, so there is no walk to "
-                            "integrate and nothing to verify; is it the walk's log?",
-                            imu.source,
-                            imu.time_s.back() - imu.time_s.front()));
-  }
+  internal::ThrowIfNeverMoves(still, imu);
 
   TimedPath ref_all;
   ref_all.time_s = reference.time_s;

@@ -299,6 +299,18 @@ std::optional<double> HeadingTime(const TimedPath& ref, double distance_m) {
   return std::nullopt;
 }
 
+void ThrowIfNeverMoves(const StillResult& still, const Recording& imu) {
+  if (std::find(still.still.begin(), still.still.end(), false) != still.still.end()) {
+    return;
+  }
+  throw Error(ErrorKind::kInput,
+              fmt::format("{}: the IMU never moves: the still test finds it at rest "
+                          "over all {:.1f} s of the log, so there is no walk to "
+                          "integrate and nothing to verify; is it the walk's log?",
+                          imu.source,
+                          imu.time_s.back() - imu.time_s.front()));
+}
+
 void AddWalkFindings(const StillResult& still,
                      std::size_t samples,
                      bool log_has_gyro,
