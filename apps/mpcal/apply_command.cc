@@ -16,6 +16,7 @@
 #include "mpcal/apply.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibration_file.h"
+#include "mpcal/count.h"
 #include "mpcal/error.h"
 #include "progress.h"
 
@@ -118,8 +119,8 @@ ApplyResult ApplyWithFallback(const CLI::App& cmd,
 void PrintSummary(const ApplyFlags& flags,
                   const Calibration& calibration,
                   const ApplyResult& result) {
-  fmt::print("corrected {} rows of '{}' into '{}' (accelerometer in {}",
-             result.data_rows,
+  fmt::print("corrected {} of '{}' into '{}' (accelerometer in {}",
+             Count(result.data_rows, "row"),
              flags.input,
              flags.output,
              ToString(result.out_units));
@@ -184,8 +185,10 @@ void AddApplyCommand(CLI::App& root) {
   cmd->add_option("CALIB",
                   flags->calibration,
                   "Calibration file (JSON) written by 'mpcal calibrate'")
+      ->check(InputPath)
       ->required();
   cmd->add_option("INPUT", flags->input, "Log to correct ('-': standard input)")
+      ->check(InputPath)
       ->required();
   cmd->add_option("-o,--output",
                   flags->output,

@@ -16,6 +16,7 @@
 #include "mpcal/bag.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/calibration_file.h"
+#include "mpcal/count.h"
 #include "mpcal/error.h"
 #include "mpcal/gyro_log.h"
 #include "mpcal/log_reader.h"
@@ -129,9 +130,9 @@ void Run(CalibrateFlags& f) {
   result.calibration.provenance = Provenance{MPCAL_VERSION, f.input, DescribeOptions(f)};
   result.calibration.input_layout = std::move(input_layout);
 
-  fmt::print("{}: {} rows, {:.1f} s; model {}, gravity {:.5f} m/s2\n",
+  fmt::print("{}: {}, {:.1f} s; model {}, gravity {:.5f} m/s2\n",
              f.input,
-             recording.size(),
+             Count(recording.size(), "row"),
              recording.time_s.back() - recording.time_s.front(),
              ToString(f.calibrate.solve.model),
              f.calibrate.solve.gravity_mps2);
@@ -177,6 +178,7 @@ void AddCalibrateCommand(CLI::App& root) {
       "non-orthogonality with their 1σ, and the gyroscope (M and bias) from the turns "
       "between the positions when the log has one; write a calibration file");
   app->add_option("INPUT", flags->input, "Log: CSV or text, '-' for standard input")
+      ->check(InputPath)
       ->required();
   app->add_option("-o,--output",
                   flags->output,

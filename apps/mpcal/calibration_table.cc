@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "mpcal/count.h"
 #include "mpcal/noise.h"
 #include "mpcal/noise_units.h"
 
@@ -43,11 +44,11 @@ std::string FormatSplitHalf(const SplitHalfSummary& check) {
     if (!c.determined) {
       out += fmt::format(
           "split-half ({}, {} + {} positions): not possible, a half needs {} "
-          "positions more than the parameters and must determine them all\n",
+          "more than the parameters and must determine them all\n",
           kind,
           c.positions_first,
           c.positions_second,
-          SplitRedundancyNeeded(c.kind));
+          Count(SplitRedundancyNeeded(c.kind), "position"));
       continue;
     }
     out += fmt::format(

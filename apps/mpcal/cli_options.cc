@@ -57,6 +57,13 @@ const CLI::Validator OutputPath(
                  : "";
     },
     "PATH");
+const CLI::Validator OutputDirectory(
+    [](const std::string& text) -> std::string {
+      return text.empty() ? "the directory name is empty; give a path, or '.' for the "
+                            "current directory"
+                          : "";
+    },
+    "DIR");
 const CLI::Validator InputPath(
     [](const std::string& text) -> std::string {
       return text.empty()

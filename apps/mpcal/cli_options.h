@@ -84,6 +84,9 @@ extern const CLI::Validator FiniteNumber;
 /// Check for an output file name: not empty (`-o ''` is a slip, not a
 /// request to write nothing).
 extern const CLI::Validator OutputPath;
+/// Check for an output directory name: not empty (the current directory is
+/// '.').
+extern const CLI::Validator OutputDirectory;
 /// Check for an input file name: not empty (`''` is a slip: a shell variable
 /// that was never set, not a request to read nothing).
 extern const CLI::Validator InputPath;

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "calibration_table.h"
+#include "cli_options.h"
 #include "command.h"
 #include "gyro_table.h"
 #include "mpcal/calibrate.h"
@@ -183,7 +184,8 @@ void AddDemoCommand(CLI::App& root) {
   app->add_option("--output-dir",
                   flags->output_dir,
                   "Where the calibration, the truth and the report go")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(OutputDirectory);
   app->footer("Example:\n  mpcal demo --preset colibri --seed 7");
   app->callback([flags] { Run(*flags); });
 }

@@ -12,6 +12,7 @@
 #include "explain_detect.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
+#include "mpcal/count.h"
 #include "mpcal/coverage.h"
 #include "mpcal/detect.h"
 #include "mpcal/error.h"
@@ -44,10 +45,10 @@ std::string JoinDirections(const std::vector<int>& idx) {
 void PrintDetection(const Recording& rec,
                     const DetectResult& det,
                     const DetectOptions& o) {
-  const std::string unit(ToString(rec.units));
-  fmt::print("static detection: window {} s ({} samples), min {} s, settle {} s\n",
+  const std::string unit(UnitSymbol(rec.units));
+  fmt::print("static detection: window {} s ({}), min {} s, settle {} s\n",
              o.window_s,
-             det.window_samples,
+             Count(det.window_samples, "sample"),
              o.min_static_s,
              o.settle_s);
   fmt::print(
@@ -60,12 +61,10 @@ void PrintDetection(const Recording& rec,
                            : fmt::format("{} x quiet level", o.threshold_factor),
       100.0 * det.still_fraction);
   fmt::print(
-      "  {} static position{}; {} still stretch{} shorter than {} s dropped, {} "
+      "  {}; {} shorter than {} s dropped, {} "
       "merged across a short bump; longest still stretch {:.1f} s\n",
-      det.intervals.size(),
-      det.intervals.size() == 1 ? "" : "s",
-      det.dropped_short,
-      det.dropped_short == 1 ? "" : "es",
+      Count(det.intervals.size(), "static position"),
+      Count(det.dropped_short, "still stretch", "still stretches"),
       o.min_static_s,
       det.merged,
       det.longest_still_s);
@@ -112,18 +111,18 @@ void PrintIntervals(const Recording& rec,
       "(norm "
       "of the per-axis std) in {}; turn: angle from the previous position\n",
       t0,
-      ToString(rec.units));
+      UnitSymbol(rec.units));
 }
 
 void PrintCoverage(const CoverageResult& cov, const CoverageOptions& o) {
   if (cov.positions == 0) return;
-  const std::string unit(ToString(o.units));
+  const std::string unit(UnitSymbol(o.units));
   fmt::print(
-      "\ncoverage for --model {}: {} positions, {} distinct orientations (>{} deg "
+      "\ncoverage for --model {}: {}, {} (>{} deg "
       "apart)\n",
       ToString(o.model),
-      cov.positions,
-      cov.distinct_positions,
+      Count(cov.positions, "position"),
+      Count(cov.distinct_positions, "distinct orientation"),
       o.distinct_deg);
   fmt::print("  offset ({:.6g}, {:.6g}, {:.6g}) {}, 1 g = {:.5g} {} ({})\n",
              cov.normalisation.centre.x(),
@@ -218,12 +217,12 @@ void Run(DetectFlags& f) {
   const std::vector<Turn> turns = MeasureTurns(rec, det.intervals, &gyro_scale);
 
   const double span_s = rec.time_s.back() - rec.time_s.front();
-  fmt::print("{}: {} rows, {:.1f} s at {:.4g} Hz, units {}\n",
+  fmt::print("{}: {}, {:.1f} s at {:.4g} Hz, units {}\n",
              f.input,
-             rec.size(),
+             Count(rec.size(), "row"),
              span_s,
              det.sample_period_s > 0 ? 1.0 / det.sample_period_s : 0.0,
-             ToString(rec.units));
+             UnitSymbol(rec.units));
   // On stdout with the report, so that stderr keeps to the one error line.
   for (const auto& w : rec.warnings) fmt::print("  note: {}\n", w);
   PrintDetection(rec, det, o);
@@ -261,6 +260,7 @@ void AddDetectCommand(CLI::App& root) {
       "whether they are enough to calibrate (exit 0) or what to record next (exit 1); "
       "with a gyroscope, the turns between the positions (angle, axis, duration)");
   app->add_option("INPUT", flags->input, "Log: CSV or text, '-' for standard input")
+      ->check(InputPath)
       ->required();
   app->add_option("--json",
                   flags->json,

@@ -95,15 +95,14 @@ DetectionWords ExplainDetectionWords(const DetectResult& detection,
 
 std::string ExplainUnits(const UnitsError& error) {
   const UnitsError::Finding& f = error.finding();
-  const double per_unit = *FixedMps2PerUnit(f.units);
   std::string hint;
   switch (f.guess) {
     case UnitsGuess::kG:
       hint = "the readings look like g: add " + FlagWithValue(error.advice().settings[0]);
       break;
     case UnitsGuess::kMps2:
-      hint =
-          "the readings look like m/s2: use " + FlagWithValue(error.advice().settings[0]);
+      hint = "the readings look like m/s\u00b2: use " +
+             FlagWithValue(error.advice().settings[0]);
       break;
     case UnitsGuess::kCounts:
       hint = "the readings look like raw ADC counts: add " +
@@ -114,16 +113,7 @@ std::string ExplainUnits(const UnitsError& error) {
           "check {} and {}", FlagName(Option::kLogUnits), FlagName(Option::kLogColumns));
       break;
   }
-  return fmt::format(
-      "{}: the readings have a median magnitude of {:.4g} {}, but gravity is {:.5g} m/s2 "
-      "({:.4g} {}); {}",
-      f.source,
-      f.median_magnitude,
-      ToString(f.units),
-      f.gravity_mps2,
-      f.gravity_mps2 / per_unit,
-      ToString(f.units),
-      hint);
+  return fmt::format("{}; {}", DescribeUnitsFinding(f), hint);
 }
 
 std::string ExplainSession(const SessionError& error) {

@@ -241,6 +241,7 @@ void AddRepeatCommand(CLI::App& root) {
                   flags->inputs,
                   "Two or more sessions of one device: logs (calibrated here with the "
                   "options below) or calibration files (JSON from 'mpcal calibrate')")
+      ->check(InputPath)
       ->required();
   app->add_option("--json",
                   flags->json,

@@ -2,6 +2,7 @@
 // and verification, as one self-contained HTML page.
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -83,12 +84,17 @@ void Run(const ReportFlags& f) {
   };
   WriteReport(f.output, inputs);
   if (f.output == "-") return;
-  std::vector<std::string> sections;
-  if (inputs.calibration) sections.emplace_back("calibration");
-  if (inputs.session) sections.emplace_back("session");
-  if (inputs.repeatability) sections.emplace_back("repeatability");
-  if (inputs.verification) sections.emplace_back("verification");
-  if (inputs.noise) sections.emplace_back("noise");
+  // In the order of the page (RenderReport).
+  std::vector<std::string_view> sections;
+  for (const auto& [present, name] :
+       {std::pair{inputs.calibration.has_value(), "calibration"},
+        std::pair{inputs.calibration && inputs.calibration->gyroscope, "gyroscope"},
+        std::pair{inputs.session.has_value(), "session"},
+        std::pair{inputs.repeatability.has_value(), "repeatability"},
+        std::pair{inputs.verification.has_value(), "verification"},
+        std::pair{inputs.noise.has_value(), "noise"}}) {
+    if (present) sections.push_back(name);
+  }
   fmt::print("wrote {} ({})\n", f.output, fmt::join(sections, ", "));
 }
 
@@ -102,26 +108,32 @@ void AddReportCommand(CLI::App& root) {
   cmd->add_option("--calib",
                   f->files.calibration,
                   "Calibration file (JSON) from 'mpcal calibrate': parameters, fit, "
-                  "residual of every position, orientations covered");
+                  "residual of every position, orientations covered")
+      ->check(InputPath);
   cmd->add_option("--session",
                   f->files.session,
                   "The recording the calibration came from: readings against time with "
-                  "the static positions shaded (read with the log options below)");
+                  "the static positions shaded (read with the log options below)")
+      ->check(InputPath);
   AddLogOptions(*cmd, f->files.log);
   cmd->add_option("--repeat",
                   f->files.repeatability,
-                  "Repeatability table from 'mpcal repeat --json'");
+                  "Repeatability table from 'mpcal repeat --json'")
+      ->check(InputPath);
   cmd->add_option(
-      "--verify", f->files.verification, "Verification result from 'mpcal verify -o'");
+         "--verify", f->files.verification, "Verification result from 'mpcal verify -o'")
+      ->check(InputPath);
   cmd->add_option(std::string(FlagName(Option::kVerifyTrajectories)),
                   f->files.verification_trajectories,
                   "PREFIX given to 'mpcal verify --trajectory-csv': plots "
-                  "PREFIX-reference.csv, PREFIX-raw.csv, PREFIX-corrected.csv");
+                  "PREFIX-reference.csv, PREFIX-raw.csv, PREFIX-corrected.csv")
+      ->check(InputPath);
   cmd->add_option(
-      "--noise",
-      f->files.noise,
-      "Noise analysis from 'mpcal noise --json': Allan deviation of each axis "
-      "with its band and fitted terms, the terms table");
+         "--noise",
+         f->files.noise,
+         "Noise analysis from 'mpcal noise --json': Allan deviation of each axis "
+         "with its band and fitted terms, the terms table")
+      ->check(InputPath);
   cmd->add_option(
          "-o,--output", f->output, "The HTML file to write ('-': standard output)")
       ->check(OutputPath)

@@ -133,8 +133,10 @@ void AddSimulateNoiseCommand(CLI::App& simulate) {
   app->add_option("-o,--output",
                   f->output,
                   "The record (CSV t,ax,ay,az,gx,gy,gz in s, m/s2, rad/s; '-': stdout)")
+      ->check(OutputPath)
       ->required();
   app->add_option("--truth", f->truth, "The true terms (JSON, mpcal.noise_truth/1)")
+      ->check(OutputPath)
       ->required();
   app->footer(
       "Example:\n"

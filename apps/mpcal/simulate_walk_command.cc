@@ -246,7 +246,8 @@ void AddSimulateWalkCommand(CLI::App& simulate) {
   app->add_option("--truth", f->truth, "The true errors as a calibration file (JSON)")
       ->check(OutputPath);
   app->add_option(
-      "--path", f->path, "The true path (CSV t_s,e_m,n_m,u_m at the IMU samples)");
+         "--path", f->path, "The true path (CSV t_s,e_m,n_m,u_m at the IMU samples)")
+      ->check(OutputPath);
   AddWalkOptions(app, f->options);
   AddSensorAndReferenceOptions(app, *f);
   AddGravityOptions(*app, f->gravity);

@@ -20,6 +20,7 @@
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/calibration_file.h"
+#include "mpcal/count.h"
 #include "mpcal/error.h"
 #include "mpcal/gnss.h"
 #include "mpcal/gravity.h"
@@ -158,14 +159,14 @@ void PrintSummary(std::FILE* out,
   fmt::print(
       out,
       "attitude: {} ({:.2f} deg from z-up), {}; gravity {:.5f} m/s2; {:.1f} s initial "
-      "rest, {} still stretches\n",
+      "rest, {}\n",
       result.mount == MountMode::kLevel ? "levelled at the initial rest"
                                         : "z up as stated",
       result.initial_tilt_raw_rad * 180.0 / M_PI,
       result.gyro_used ? "propagated by the gyroscope" : "fixed (no rotation)",
       result.gravity_mps2,
       result.initial_rest_s,
-      result.stops);
+      Count(result.stops, "still stretch", "still stretches"));
   fmt::print(out,
              "  {:<10} {:>12} {:>12} {:>12} {:>12}\n",
              "(m)",
@@ -214,15 +215,18 @@ void RunVerify(const CLI::App& cmd, VerifyFlags& f) {
 
 void AddInputOutputOptions(CLI::App* cmd, VerifyFlags* f) {
   cmd->add_option("--imu", f->imu, "The walk's IMU log (as for calibrate; '-': stdin)")
+      ->check(InputPath)
       ->required();
   cmd->add_option("--gnss",
                   f->gnss,
                   "The reference: RTKLIB .pos (GPST/UTC; lat/lon/height or ECEF), NMEA "
                   "GGA, or CSV with a t,lat,lon,h or t,e,n,u header")
+      ->check(InputPath)
       ->required();  // a missing file is input (exit 1), reported by ReadGnss
   cmd->add_option("--calib",
                   f->calibration,
-                  "Calibration file (JSON): also integrate the corrected readings");
+                  "Calibration file (JSON): also integrate the corrected readings")
+      ->check(InputPath);
   cmd->add_option("-o,--output", f->output, "Result file (JSON); '-' for standard output")
       ->check(OutputPath)
       ->required();

@@ -80,6 +80,11 @@ class UnitsError : public Error {
   Finding finding_;
 };
 
+/// The finding as facts in one unit spelling: "a.csv: the readings have a
+/// median magnitude of 259.7 m/s², but gravity is 9.8066 m/s²" (for a log in
+/// g: "... 9.6 g, but gravity is 1.000 g (9.8066 m/s²)").
+std::string DescribeUnitsFinding(const UnitsError::Finding& finding);
+
 /// Why a session cannot be calibrated (thrown by CalibrateRecording): kind
 /// kSession, with the detection or coverage behind it.
 enum class SessionProblem {

@@ -40,9 +40,14 @@ inline double MaxReading(AccelUnits units) {
 /// logger's clock (Unix time is 1.8e9 s; in ms read as seconds, 1.8e12).
 inline constexpr double kMaxTimeS = 1e12;
 
-/// The highest sample rate of an inertial log: MEMS sensors output at most a
-/// few tens of kHz; a rate beyond 1 MHz is a time column in the wrong unit.
-inline constexpr double kMaxSampleRateHz = 1e6;
+/// The shortest plausible sample period: the fastest MEMS inertial sensors
+/// sample at a few tens of kHz (gyroscopes up to 32 kHz, vibration
+/// accelerometers up to 100 kHz); 1 MHz leaves margin. A log whose typical
+/// time step is shorter holds a time column in another unit than it is read
+/// in (ns read as s), or no time at all; every rate derived from it (window
+/// lengths, thresholds) would be meaningless.
+inline constexpr double kMinSamplePeriodS = 1e-6;
+inline constexpr double kMaxSampleRateHz = 1.0 / kMinSamplePeriodS;
 
 /// A calibration's parameters, in SI: a bias beyond 10 g is not an
 /// accelerometer's (consumer parts: below 1 g); a scale-factor error beyond
@@ -51,6 +56,15 @@ inline constexpr double kMaxSampleRateHz = 1e6;
 inline constexpr double kMaxBiasMps2 = 10.0 * kStandardGravityMps2;
 inline constexpr double kMaxScaleFactorError = 0.5;
 inline constexpr double kMaxNonOrthogonalityRad = 0.7853981633974483;
+/// The largest magnitude of the `index`th packed parameter (the order of
+/// kParameterNames in model.h): kMaxBiasMps2, kMaxScaleFactorError or
+/// kMaxNonOrthogonalityRad.
+inline constexpr double MaxParameterMagnitude(int index) {
+  if (index < 3) return kMaxBiasMps2;
+  if (index < 6) return kMaxScaleFactorError;
+  return kMaxNonOrthogonalityRad;
+}
+
 /// Counts per g of a raw-counts calibration: 1 (a float "count") to 2^31.
 inline constexpr double kMinCountsPerG = 1e-3;
 inline constexpr double kMaxCountsPerG = 2147483648.0;

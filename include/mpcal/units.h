@@ -22,6 +22,9 @@ enum class AccelUnits {
 
 /// "mps2", "g" or "counts".
 std::string_view ToString(AccelUnits units);
+/// The unit as the README's conventions write it in prose and tables:
+/// "m/s²", "g" or "counts" (ToString is the name a file or flag gives).
+std::string_view UnitSymbol(AccelUnits units);
 /// Inverse of ToString (also accepts "m/s2", "m/s^2"); nullopt if unknown.
 std::optional<AccelUnits> ParseAccelUnits(std::string_view name);
 /// m/s² per unit for kMps2 and kG; nullopt for kCounts (found from data).

@@ -137,7 +137,7 @@ struct VerifyResult {
 /// \throws mpcal::Error for invalid options, a log in counts, a calibration
 ///   for other units than the log's, an empty input, logs that do not overlap
 ///   in time (the message gives both spans), no initial rest where one is
-///   needed, or a reference that never moves.
+///   needed, an IMU log at rest throughout, or a reference that never moves.
 VerifyResult Verify(const Recording& imu,
                     const GnssTrack& reference,
                     const std::optional<Calibration>& calibration,

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "mpcal/count.h"
 #include "mpcal/coverage.h"
 
 namespace mpcal {
@@ -38,25 +39,25 @@ std::string Describe(const CoverageProblem& p) {
                          p.required_positions);
     case CoverageProblemKind::kTooFewOrientations:
       return fmt::format(
-          "the {} static positions are only {} distinct orientations, too few to "
+          "the {} are only {}, too few to "
           "determine the {} parameters of {}",
-          p.positions,
-          p.distinct_positions,
+          Count(p.positions, "static position"),
+          Count(p.distinct_positions, "distinct orientation"),
           p.parameters,
           ModelName(p.model));
     case CoverageProblemKind::kNotDetermined:
       return fmt::format(
-          "the {} static positions ({} distinct orientations) do not determine all {} "
+          "the {} ({}) do not determine all {} "
           "parameters of {}: they lie too close to one plane or cone",
-          p.positions,
-          p.distinct_positions,
+          Count(p.positions, "static position"),
+          Count(p.distinct_positions, "distinct orientation"),
           p.parameters,
           ModelName(p.model));
     case CoverageProblemKind::kBelowRecommended:
       return fmt::format(
-          "{} distinct orientations; the paper recommends more than 18 spanning the "
+          "{}; the paper recommends more than 18 spanning the "
           "sphere",
-          p.distinct_positions);
+          Count(p.distinct_positions, "distinct orientation"));
     case CoverageProblemKind::kExactFit:
       return "six positions for six parameters fit exactly: nothing checks the fit (a "
              "seventh position would)";
@@ -84,8 +85,9 @@ std::string Describe(const CoverageStep& step) {
     case CoverageStepKind::kRecordPositions: {
       const std::string hold = fmt::format("~{:g} s each, still", step.hold_s);
       if (step.orientations.empty()) {
-        return fmt::format(
-            "record {} more positions in new orientations ({})", step.count, hold);
+        return fmt::format("record {} in new orientations ({})",
+                           Count(step.count, "more position", "more positions"),
+                           hold);
       }
       std::vector<std::string> names = step.orientations;
       if (step.unnamed > 0) names.push_back(fmt::format("{} more", step.unnamed));

@@ -11,6 +11,7 @@
 
 #include "detect_steps.h"
 #include "motion_statistic.h"
+#include "mpcal/count.h"
 #include "mpcal/error.h"
 #include "mpcal/sphere_fit.h"
 
@@ -67,17 +68,16 @@ std::size_t HalfWindow(const Recording& recording,
   if (n < w) {
     Advice advice;
     advice.settings.push_back({Option::kDetectWindow, ""});
-    throw Error(
-        ErrorKind::kSession,
-        fmt::format("{}: the recording has {} samples ({:.3g} s), shorter than "
-                    "one detection window of {} s ({} samples): record longer, or "
-                    "shorten the window",
-                    src,
-                    n,
-                    n > 1 ? t[n - 1] - t[0] : 0.0,
-                    options.window_s,
-                    w),
-        advice);
+    throw Error(ErrorKind::kSession,
+                fmt::format("{}: the recording has {} ({:.3g} s), shorter than "
+                            "one detection window of {} s ({}): record longer, or "
+                            "shorten the window",
+                            src,
+                            Count(n, "sample"),
+                            n > 1 ? t[n - 1] - t[0] : 0.0,
+                            options.window_s,
+                            Count(w, "sample")),
+                advice);
   }
   return half;
 }

@@ -12,6 +12,7 @@
 #include "io/json_reader.h"
 #include "io/result_text.h"
 #include "mpcal/error.h"
+#include "mpcal/plausible.h"
 
 namespace mpcal {
 namespace {
@@ -73,6 +74,29 @@ std::optional<bool> ReadChanged(const JsonReader& in,
   return value.get<bool>();
 }
 
+// A value of the `index`th packed parameter (or, with `spread`, a standard
+// deviation of its values), checked for what a calibration can hold
+// (plausible.h): a bias of 1e308 would otherwise reach every table as inf.
+void CheckPlausible(
+    const JsonReader& in, double v, int index, const std::string& field, bool spread) {
+  static constexpr std::array<std::string_view, 3> kKinds = {
+      "accelerometer's bias", "scale-factor error", "non-orthogonality angle"};
+  static constexpr std::array<std::string_view, 3> kUnits = {" m/s²", "", " rad"};
+  const auto kind = static_cast<std::size_t>(index / 3);
+  const double bound = MaxParameterMagnitude(index);
+  // Values within ±bound spread by at most the width of that range.
+  const bool plausible = spread ? v >= 0.0 && v <= 2.0 * bound : std::abs(v) <= bound;
+  if (plausible) return;
+  in.Fail(fmt::format("'{}' = {} is {} any {} ({}{:g}{})",
+                      field,
+                      v,
+                      spread ? "not the spread of" : "beyond",
+                      kKinds[kind],
+                      spread ? "0 to " : "±",
+                      spread ? 2.0 * bound : bound,
+                      kUnits[kind]));
+}
+
 void ReadVectorGroup(const JsonReader& in,
                      const json& group,
                      const std::string& path,
@@ -86,8 +110,10 @@ void ReadVectorGroup(const JsonReader& in,
     const std::string row_path = fmt::format("{}.values[{}]", path, t);
     const json& row = in.ArrayValue(values[t], row_path, 3);
     for (int a = 0; a < 3; ++a) {
-      r.parameters[first + a].values.push_back(
-          in.NumberValue(row[a], fmt::format("{}[{}]", row_path, a)));
+      const std::string item = fmt::format("{}[{}]", row_path, a);
+      const double v = in.NumberValue(row[a], item);
+      CheckPlausible(in, v, first + a, item, false);
+      r.parameters[first + a].values.push_back(v);
     }
   }
   for (std::string_view key : {"mean", "std_population", "std_sample", "changed"}) {
@@ -96,10 +122,15 @@ void ReadVectorGroup(const JsonReader& in,
     for (int a = 0; a < 3; ++a) {
       ParameterRepeatability& p = r.parameters[first + a];
       const std::string item = fmt::format("{}[{}]", field_path, a);
-      if (key == "mean") p.mean = in.NumberValue(arr[a], item);
-      if (key == "std_population") p.std_population = in.NumberValue(arr[a], item);
-      if (key == "std_sample") p.std_sample = in.NumberValue(arr[a], item);
-      if (key == "changed") p.changed = ReadChanged(in, arr[a], item);
+      if (key == "changed") {
+        p.changed = ReadChanged(in, arr[a], item);
+        continue;
+      }
+      const double v = in.NumberValue(arr[a], item);
+      CheckPlausible(in, v, first + a, item, key != "mean");
+      (key == "mean"             ? p.mean
+       : key == "std_population" ? p.std_population
+                                 : p.std_sample) = v;
     }
   }
 }
@@ -108,16 +139,22 @@ void ReadScalarGroup(const JsonReader& in,
                      const json& group,
                      const std::string& path,
                      int trials,
+                     int index,
                      ParameterRepeatability& p) {
   const json& values = in.ArrayValue(in.Field(group, path, "values"),
                                      path + ".values",
                                      static_cast<std::size_t>(trials));
   for (int t = 0; t < trials; ++t) {
-    p.values.push_back(in.NumberValue(values[t], fmt::format("{}.values[{}]", path, t)));
+    const std::string item = fmt::format("{}.values[{}]", path, t);
+    p.values.push_back(in.NumberValue(values[t], item));
+    CheckPlausible(in, p.values.back(), index, item, false);
   }
   p.mean = in.Number(group, path, "mean");
+  CheckPlausible(in, p.mean, index, path + ".mean", false);
   p.std_population = in.Number(group, path, "std_population");
+  CheckPlausible(in, p.std_population, index, path + ".std_population", true);
   p.std_sample = in.Number(group, path, "std_sample");
+  CheckPlausible(in, p.std_sample, index, path + ".std_sample", true);
   p.changed = ReadChanged(in, in.Field(group, path, "changed"), path + ".changed");
 }
 
@@ -174,6 +211,7 @@ RepeatabilityResult RepeatabilityFromJson(const std::string& text,
                     in.Field(angles, "parameters.non_orthogonality_rad", kAngleKeys[k]),
                     path,
                     r.trials,
+                    6 + static_cast<int>(k),
                     r.parameters[6 + k]);
   }
   return r;

@@ -247,6 +247,38 @@ void RowSink::Append(const ChunkRows& c) {
   if (!c.read_error.empty()) throw Error(ErrorKind::kIo, c.read_error);
 }
 
+// Times that do not advance, or advance by less than any sensor samples,
+// leave every duration of the log meaningless: detection's windows would
+// hold no rows (a threshold of NaN) or all of them.
+void RowSink::CheckSamplePeriod() const {
+  const Advice advice{
+      {{Option::kLogTimeUnit, ""}, {Option::kLogRate, ""}}, Stage::kNone, ""};
+  if (rows_ == 1 && duplicates_ > 0) {
+    throw Error(ErrorKind::kTime,
+                fmt::format("{}: all {} rows have the same time, {:.9g} s: the time "
+                            "column does not advance",
+                            rec_->source,
+                            duplicates_ + 1,
+                            first_time_s_),
+                advice);
+  }
+  if (rows_ < 2) return;
+  // The median step, or the mean when too few steps give a median.
+  const double step = gaps_.typical_s() > 0.0 ? gaps_.typical_s()
+                                              : (last_time_s_ - first_time_s_) /
+                                                    static_cast<double>(rows_ - 1);
+  if (step >= kMinSamplePeriodS) return;
+  throw Error(ErrorKind::kTime,
+              fmt::format("{}: the time steps are {:.3g} s, shorter than any sensor "
+                          "samples (at most {:g} Hz, a step of {:g} s): the time column "
+                          "is not a time in the unit it is read in",
+                          rec_->source,
+                          step,
+                          kMaxSampleRateHz,
+                          kMinSamplePeriodS),
+              advice);
+}
+
 void RowSink::Finish(bool has_header) {
   if (cut_off_.held()) rec_->warnings.push_back(cut_off_.Warning(rec_->source));
   if (rows_ == 0) {
@@ -267,6 +299,8 @@ void RowSink::Finish(bool has_header) {
                               kMaxTimeS));
     }
   }
+  gaps_.Finish();
+  CheckSamplePeriod();
   if (duplicates_ > 0) {
     rec_->warnings.push_back(
         fmt::format("{}: {} row{} with a duplicated timestamp dropped (first on {} {})",
@@ -276,7 +310,6 @@ void RowSink::Finish(bool has_header) {
                     row_noun_,
                     first_duplicate_line_));
   }
-  gaps_.Finish();
   std::string gaps = GapWarning(gaps_, rec_->source);
   if (!gaps.empty()) rec_->warnings.push_back(std::move(gaps));
 }

@@ -100,6 +100,7 @@ class RowSink {
  private:
   void Reserve(const ChunkRows& c);
   void AppendRows(const ChunkRows& c);
+  void CheckSamplePeriod() const;
   [[noreturn]] void ThrowTimeBack(const ChunkRows& c, std::size_t row, std::size_t kept);
   std::size_t LineOf(const ChunkRows& c, std::size_t row) const;
   void HandOver();

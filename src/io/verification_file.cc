@@ -74,15 +74,30 @@ json IntegrationJson(const VerifyResult& r) {
               {"reference_epochs", r.reference.epochs}};
 }
 
+// A distance or a length (m): never negative (a corrupt or hand-edited
+// file), as no reader lets an impossible value reach a table.
+std::optional<double> Distance(const JsonReader& r,
+                               const json& object,
+                               const char* path,
+                               const char* key,
+                               bool required) {
+  const std::optional<double> v =
+      required ? r.Number(object, path, key) : r.OptionalNumber(object, path, key);
+  if (v && !(*v >= 0.0)) {
+    r.Fail(fmt::format("'{}.{}' = {} m is negative: not a distance", path, key, *v));
+  }
+  return v;
+}
+
 VerificationSummary::Metrics ReadMetrics(const JsonReader& r,
                                          const json& doc,
                                          const char* key) {
   const json& m = r.Object(doc, "", key);
   VerificationSummary::Metrics out;
-  out.start_end_distance_m = r.Number(m, key, "start_end_distance_m");
-  out.horizontal_rms_m = r.OptionalNumber(m, key, "horizontal_rms_m");
-  out.horizontal_max_m = r.OptionalNumber(m, key, "horizontal_max_m");
-  out.path_length_m = r.OptionalNumber(m, key, "path_length_m");
+  out.start_end_distance_m = *Distance(r, m, key, "start_end_distance_m", true);
+  out.horizontal_rms_m = Distance(r, m, key, "horizontal_rms_m", false);
+  out.horizontal_max_m = Distance(r, m, key, "horizontal_max_m", false);
+  out.path_length_m = Distance(r, m, key, "path_length_m", false);
   return out;
 }
 
@@ -204,8 +219,9 @@ VerificationSummary ParseVerificationJson(const std::string& text,
   VerificationSummary out;
   const json& reference = r.Object(doc, "", "reference");
   out.reference.start_end_distance_m =
-      r.Number(reference, "reference", "start_end_distance_m");
-  out.reference.path_length_m = r.OptionalNumber(reference, "reference", "path_length_m");
+      *Distance(r, reference, "reference", "start_end_distance_m", true);
+  out.reference.path_length_m =
+      Distance(r, reference, "reference", "path_length_m", false);
   out.raw = ReadMetrics(r, doc, "raw");
   if (doc.contains("corrected")) out.corrected = ReadMetrics(r, doc, "corrected");
   ReadDetails(doc, out);

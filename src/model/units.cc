@@ -16,6 +16,10 @@ std::string_view ToString(AccelUnits units) {
   return "unknown";
 }
 
+std::string_view UnitSymbol(AccelUnits units) {
+  return units == AccelUnits::kMps2 ? "m/s\u00b2" : ToString(units);
+}
+
 std::optional<AccelUnits> ParseAccelUnits(std::string_view name) {
   if (name == "mps2" || name == "m/s2" || name == "m/s^2") return AccelUnits::kMps2;
   if (name == "g") return AccelUnits::kG;

@@ -11,8 +11,9 @@
 namespace mpcal {
 namespace {
 
-// How a packed parameter is shown: the paper's unit (bias in g, scale-factor
-// error in ppm, angles in rad) and the precision of a value in it.
+// How a packed parameter is shown: the units of every mpcal table (bias in
+// mg, scale-factor error in ppm, angles in mrad) and the precision of a value
+// in it.
 struct RowStyle {
   std::string_view label;
   std::string_view unit;
@@ -21,15 +22,15 @@ struct RowStyle {
 };
 
 constexpr std::array<RowStyle, kNumModelParameters> kRows = {{
-    {"bias x", "g", 1.0 / kStandardGravityMps2, 6},
-    {"bias y", "g", 1.0 / kStandardGravityMps2, 6},
-    {"bias z", "g", 1.0 / kStandardGravityMps2, 6},
+    {"bias x", "mg", 1e3 / kStandardGravityMps2, 3},
+    {"bias y", "mg", 1e3 / kStandardGravityMps2, 3},
+    {"bias z", "mg", 1e3 / kStandardGravityMps2, 3},
     {"scale error x", "ppm", 1e6, 2},
     {"scale error y", "ppm", 1e6, 2},
     {"scale error z", "ppm", 1e6, 2},
-    {"non-orth. yz", "rad", 1.0, 6},
-    {"non-orth. zx", "rad", 1.0, 6},
-    {"non-orth. zy", "rad", 1.0, 6},
+    {"non-orth. yz", "mrad", 1e3, 3},
+    {"non-orth. zx", "mrad", 1e3, 3},
+    {"non-orth. zy", "mrad", 1e3, 3},
 }};
 
 constexpr int kLabelWidth = 14;

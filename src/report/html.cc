@@ -137,6 +137,11 @@ std::string Significant(double v, int significant) {
   return fmt::format("{:.{}f}", v, decimals);
 }
 
+std::string Fixed(double v, int decimals) {
+  if (!std::isfinite(v)) return "\u2014";
+  return fmt::format("{:.{}f}", v, decimals);
+}
+
 std::string PlusMinus(double value, std::optional<double> sigma, int significant) {
   if (!std::isfinite(value)) return "\u2014";
   if (!sigma || !std::isfinite(*sigma) || *sigma <= 0.0) {

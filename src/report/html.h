@@ -37,6 +37,10 @@ std::string PlusMinus(double value, std::optional<double> sigma, int significant
 /// `v` with `significant` significant digits, fixed notation when readable.
 std::string Significant(double v, int significant = 4);
 
+/// `v` with `decimals` decimals. These formats give "—" for a value that is
+/// not finite: no cell of the report reads inf or nan.
+std::string Fixed(double v, int decimals);
+
 /// A paragraph (escaped).
 std::string Paragraph(std::string_view text, std::string_view css_class = "");
 

@@ -24,10 +24,8 @@ std::string NowUtc() {
 
 std::string RenderReport(const ReportInputs& inputs) {
   using namespace report;
-  std::string html = PageBegin(inputs.title);
-  html +=
-      HeaderSection(inputs, inputs.generated_at.empty() ? NowUtc() : inputs.generated_at);
-  html += "<main>\n";
+  // The sections first: the header links to those that were written.
+  std::string html = "<main>\n";
   if (inputs.calibration) html += CalibrationSection(*inputs.calibration);
   if (inputs.calibration) {
     html += GyroSection(*inputs.calibration, inputs.session ? &*inputs.session : nullptr);
@@ -45,7 +43,10 @@ std::string RenderReport(const ReportInputs& inputs) {
     html += Paragraph("Nothing to report: no input was given.", "note");
   }
   html += "</main>\n";
-  return html + PageEnd();
+  return PageBegin(inputs.title) +
+         HeaderSection(
+             inputs, inputs.generated_at.empty() ? NowUtc() : inputs.generated_at, html) +
+         html + PageEnd();
 }
 
 void WriteReport(const std::string& path, const ReportInputs& inputs) {

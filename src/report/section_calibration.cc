@@ -52,7 +52,7 @@ std::string ParameterTable(const Calibration& c) {
 std::string ConditionsTable(const Calibration& c) {
   Table t("meta");
   t.Row({"Model", std::string(ToString(c.model_kind))});
-  t.Row({"Gravity magnitude", fmt::format("{:.5f} m/s\u00b2", c.gravity_mps2)});
+  t.Row({"Gravity magnitude", Fixed(c.gravity_mps2, 5) + " m/s\u00b2"});
   std::string units(ToString(c.input_units));
   if (c.input_units == AccelUnits::kCounts) {
     units += fmt::format(" (nominal scale {:.6g} m/s\u00b2 per count)", c.mps2_per_unit);
@@ -193,14 +193,14 @@ std::string PositionsTable(const Calibration& c) {
     const Eigen::Vector3d u =
         norm > 0 ? Eigen::Vector3d(p.mean_mps2 / norm) : Eigen::Vector3d::Zero();
     t.Row({std::to_string(k + 1),
-           fmt::format("{:.2f}", p.start_s),
-           fmt::format("{:.2f}", p.end_s),
+           Fixed(p.start_s, 2),
+           Fixed(p.end_s, 2),
            std::to_string(p.samples),
            fmt::format("({:+.2f}, {:+.2f}, {:+.2f})", u.x(), u.y(), u.z()),
-           fmt::format("{:.3f}", p.residual_before_mps2 * kMgPerMps2),
-           fmt::format("{:.3f}", p.residual_after_mps2 * kMgPerMps2),
+           Fixed(p.residual_before_mps2 * kMgPerMps2, 3),
+           Fixed(p.residual_after_mps2 * kMgPerMps2, 3),
            p.cross_validation_residual_mps2
-               ? fmt::format("{:.3f}", *p.cross_validation_residual_mps2 * kMgPerMps2)
+               ? Fixed(*p.cross_validation_residual_mps2 * kMgPerMps2, 3)
                : std::string("\u2014"),
            p.used ? "yes" : "excluded"},
           p.used ? "" : "excluded");

@@ -1,4 +1,4 @@
-// The gyroscope section (issue 17): M as scale-factor errors and
+// The gyroscope section: M as scale-factor errors and
 // misalignments ±1σ, the bias measured at every position against time, and,
 // when the session's recording holds the gyroscope, every turn's residual
 // before and after calibration and the turns' axes on the sphere.
@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "mpcal/count.h"
 #include "mpcal/error.h"
 #include "mpcal/gyro.h"
 #include "report/bar_chart.h"
@@ -63,12 +64,12 @@ std::string FitParagraph(const GyroCalibration& g) {
   if (!g.fit) return "";
   const GyroFitSummary& f = *g.fit;
   return Paragraph(fmt::format(
-      "{} turns between the static positions; {} after {} iterations. Gravity carried "
+      "{} between the static positions; {} after {} iterations. Gravity carried "
       "over each turn by the gyroscope against the direction measured after it: tilt "
       "RMS {:.3f}\u00b0 with the nominal scale and the bias measured at every position, "
       "{:.3f}\u00b0 calibrated. Variance factor {:.2f} (1: the turn residuals as the "
       "gyroscope's and accelerometer's noise explain them).",
-      f.turns,
+      Count(f.turns, "turn"),
       f.converged ? "converged" : "did not converge",
       f.iterations,
       f.residual_rms_before_rad * kDegPerRad,
@@ -159,7 +160,7 @@ std::string GyroSection(const Calibration& calibration, const ReportSession* ses
       "Model \u03c9 = M (raw \u00b7 scale \u2212 b): M a general 3\u00d73 matrix (scale "
       "factors on its diagonal, misalignments off it, in the accelerometer's frame), "
       "b the bias measured at every static position and interpolated across each "
-      "turn; M estimated from the turns between the positions (issue 17).");
+      "turn; M estimated from the turns between the positions.");
   html += MatrixTable(g);
   html += FitParagraph(g);
   html += BiasFigure(g);

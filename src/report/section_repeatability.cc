@@ -36,8 +36,6 @@ int RowDecimals(const Row& row, double factor) {
   return std::clamp(1 - static_cast<int>(std::floor(std::log10(unit))), 0, 9);
 }
 
-std::string Fixed(double v, int decimals) { return fmt::format("{:.{}f}", v, decimals); }
-
 std::string TrialsTable(const RepeatabilityResult& rep, bool have_sigma) {
   std::vector<std::string> header = {"Parameter", "Unit"};
   for (int k = 0; k < rep.trials; ++k) header.push_back(fmt::format("trial {}", k + 1));

@@ -52,7 +52,7 @@ std::string SessionMeta(const ReportSession& session) {
                   "{:.1f} s, from {} s on the log's clock", duration, r.time_s.front())});
     if (duration > 0) {
       meta.Row({"Mean sample rate",
-                fmt::format("{:.1f} Hz", static_cast<double>(r.size() - 1) / duration)});
+                Fixed(static_cast<double>(r.size() - 1) / duration, 1) + " Hz"});
     }
   }
   meta.Row({"Units of the readings", UnitLabel(r.units)});

@@ -22,7 +22,7 @@ const SeriesStyle kRawStyle{"#D55E00", "7 4", MarkerShape::kTriangle, 1.8, true}
 const SeriesStyle kCorrectedStyle{"#0072B2", "2 3", MarkerShape::kDiamond, 2.2, true};
 
 std::string Metres(const std::optional<double>& v) {
-  return v ? fmt::format("{:.2f}", *v) : std::string("\u2014");
+  return v ? Fixed(*v, 2) : std::string("\u2014");
 }
 
 std::string MetricsTable(const VerificationSummary& v) {

@@ -11,8 +11,10 @@
 namespace mpcal::report {
 
 /// Title, date, versions, input files and options (for reproduction), and
-/// links to the sections present.
-std::string HeaderSection(const ReportInputs& inputs, const std::string& generated_at);
+/// links to the sections of `main_html` (every <section id> with its <h2>).
+std::string HeaderSection(const ReportInputs& inputs,
+                          const std::string& generated_at,
+                          const std::string& main_html);
 
 /// Parameters ±1σ, fit statistics, residuals per position, sphere coverage,
 /// cross-validation and warnings.

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "mpcal/count.h"
 #include "report/display_units.h"
 #include "report/html.h"
 
@@ -38,16 +39,16 @@ std::string SplitHalfTable(const SplitHalfSummary& check, ModelKind model) {
                         : "\u2014");
     }
     if (c.determined) {
-      row.push_back(fmt::format("{:.2f}", c.rms_z));
+      row.push_back(Fixed(c.rms_z, 2));
       row.push_back(Significant(c.p_value, 2));
       row.push_back(c.disagree ? "disagree" : "consistent");
     } else {
       row.insert(row.end(),
                  {"\u2014",
                   "\u2014",
-                  fmt::format("not possible: a half needs {} positions more "
+                  fmt::format("not possible: a half needs {} more "
                               "than the parameters",
-                              SplitRedundancyNeeded(c.kind))});
+                              Count(SplitRedundancyNeeded(c.kind), "position"))});
     }
     t.Row(row, c.determined && c.disagree ? "bad" : "");
   }

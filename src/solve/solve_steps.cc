@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "mpcal/count.h"
 #include "mpcal/distributions.h"
 #include "mpcal/error.h"
 #include "mpcal/plausible.h"
@@ -85,10 +86,10 @@ void CheckSolveInput(std::span<const PositionObservation> positions,
           {Option::kModel, std::string(ToString(ModelKind::kBiasScale6))});
     }
     throw Error(ErrorKind::kSession,
-                fmt::format("{} static positions are too few for the {} model ({} "
+                fmt::format("{} too few for the {} model ({} "
                             "parameters): it needs at least {}, and more than 18 "
                             "spanning the sphere for reliable results{}",
-                            count,
+                            Count(count, "static position is", "static positions are"),
                             ToString(options.model),
                             p,
                             p,
@@ -207,8 +208,8 @@ void ChooseBiasDrift(const FitInput& in,
       static_cast<int>(in.positions.size()) - ParameterCount(options.model) - 3;
   if (options.force_bias_drift && redundancy < 1) {
     throw Error(ErrorKind::kSession,
-                fmt::format("{} positions are too few for the model with a drifting bias",
-                            in.positions.size()));
+                fmt::format("{} too few for the model with a drifting bias",
+                            Count(in.positions.size(), "position is", "positions are")));
   }
   if (redundancy < (options.force_bias_drift ? 1 : kMinDriftRedundancy)) return;
   auto drifting = std::make_unique<Fit>(in, fit->Estimate(), options, reference_s);

@@ -74,6 +74,20 @@ void UnitsEvidence::Add(const Recording& part, std::size_t begin, std::size_t en
   rows += end - begin;
 }
 
+std::string DescribeUnitsFinding(const UnitsError::Finding& f) {
+  const std::string facts = fmt::format(
+      "{}: the readings have a median magnitude of {:.4g} {}, but gravity is ",
+      f.source,
+      f.median_magnitude,
+      UnitSymbol(f.units));
+  if (f.units == AccelUnits::kMps2)
+    return facts + fmt::format("{:.5g} m/s\u00b2", f.gravity_mps2);
+  return facts + fmt::format("{:.4g} {} ({:.5g} m/s\u00b2)",
+                             f.gravity_mps2 / *FixedMps2PerUnit(f.units),
+                             UnitSymbol(f.units),
+                             f.gravity_mps2);
+}
+
 void CheckUnits(const UnitsEvidence& e, double gravity_mps2) {
   CheckGyroUnits(e);
   if (!IsPlausibleGravity(gravity_mps2)) {
@@ -101,7 +115,7 @@ void CheckUnits(const UnitsEvidence& e, double gravity_mps2) {
   } else if (f.units == AccelUnits::kG &&
              std::abs(f.median_magnitude / kStandardGravityMps2 - 1.0) < 0.5) {
     f.guess = UnitsGuess::kMps2;
-    looks = "m/s2";
+    looks = "m/s\u00b2";
   } else if (ratio * gravity_mps2 / kStandardGravityMps2 > 20.0) {
     f.guess = UnitsGuess::kCounts;
     looks = "raw ADC counts";
@@ -114,15 +128,7 @@ void CheckUnits(const UnitsEvidence& e, double gravity_mps2) {
                                                               : AccelUnits::kCounts;
     advice.settings = {{Option::kLogUnits, std::string(ToString(guessed))}};
   }
-  const std::string facts = fmt::format(
-      "{}: the readings have a median magnitude of {:.4g} {}, but gravity is {:.5g} m/s2 "
-      "({:.4g} {})",
-      f.source,
-      f.median_magnitude,
-      ToString(f.units),
-      gravity_mps2,
-      gravity_mps2 / per_unit,
-      ToString(f.units));
+  const std::string facts = DescribeUnitsFinding(f);
   throw UnitsError(f,
                    looks.empty() ? facts + "; check the units and the columns"
                                  : facts + "; the readings look like " + looks,

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "mpcal/count.h"
 #include "mpcal/error.h"
 #include "mpcal/plausible.h"
 #include "mpcal/trajectory.h"
@@ -137,7 +138,9 @@ StillResult DetectStill(std::span<const double> time_s,
                 "still test: time, accelerometer and gyroscope have different lengths");
   }
   if (n < 3)
-    throw Error(ErrorKind::kInput, fmt::format("still test: {} samples are too few", n));
+    throw Error(
+        ErrorKind::kInput,
+        fmt::format("still test: {} too few", Count(n, "sample is", "samples are")));
   const double span_s = time_s.back() - time_s.front();
   const double dt = span_s / static_cast<double>(n - 1);
   if (!(dt > 0.0))

@@ -132,6 +132,7 @@ VerifyResult Verify(const Recording& imu,
                               ? imu.time_s[still.initial_rest_end - 1] - imu.time_s[0]
                               : 0.0;
   result.stops = static_cast<int>(still.intervals.size());
+  internal::ThrowIfNeverMoves(still, imu);
 
   TimedPath ref_all;
   ref_all.time_s = reference.time_s;

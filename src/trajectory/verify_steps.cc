@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "mpcal/count.h"
 #include "mpcal/error.h"
 #include "mpcal/units.h"
 
@@ -96,10 +97,10 @@ double CheckVerifyInputs(const Recording& imu,
   }
   const std::size_t n = imu.size();
   if (n < 3 || imu.accel.size() != n) {
-    throw Error(
-        ErrorKind::kInput,
-        fmt::format(
-            "{}: the IMU log has {} samples; a walk needs many more", imu.source, n));
+    throw Error(ErrorKind::kInput,
+                fmt::format("{}: the IMU log has {}; a walk needs many more",
+                            imu.source,
+                            Count(n, "sample")));
   }
   if (!imu.gyro_radps.empty() && imu.gyro_radps.size() != n) {
     throw Error(ErrorKind::kInput,
@@ -110,9 +111,9 @@ double CheckVerifyInputs(const Recording& imu,
   }
   if (reference.size() < 2) {
     throw Error(ErrorKind::kInput,
-                fmt::format("{}: the reference has {} epochs; a walk needs many more",
+                fmt::format("{}: the reference has {}; a walk needs many more",
                             reference.source,
-                            reference.size()));
+                            Count(reference.size(), "epoch")));
   }
   const std::optional<double> scale = FixedMps2PerUnit(imu.units);
   if (!scale) {
@@ -296,6 +297,18 @@ std::optional<double> HeadingTime(const TimedPath& ref, double distance_m) {
     }
   }
   return std::nullopt;
+}
+
+void ThrowIfNeverMoves(const StillResult& still, const Recording& imu) {
+  if (std::find(still.still.begin(), still.still.end(), false) != still.still.end()) {
+    return;
+  }
+  throw Error(ErrorKind::kInput,
+              fmt::format("{}: the IMU never moves: the still test finds it at rest "
+                          "over all {:.1f} s of the log, so there is no walk to "
+                          "integrate and nothing to verify; is it the walk's log?",
+                          imu.source,
+                          imu.time_s.back() - imu.time_s.front()));
 }
 
 void AddWalkFindings(const StillResult& still,

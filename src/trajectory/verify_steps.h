@@ -93,6 +93,12 @@ void CutReferenceToOverlap(const GnssTrack& reference,
 /// first one: the end of the segment that gives the initial heading.
 std::optional<double> HeadingTime(const TimedPath& ref, double distance_m);
 
+/// Throws mpcal::Error (kInput) when the still test finds `imu` at rest
+/// throughout: the zero-velocity updates would hold both trajectories at
+/// their start, and 0 m from start to end would pass for a perfect
+/// calibration.
+void ThrowIfNeverMoves(const StillResult& still, const Recording& imu);
+
 /// The findings about the walk itself (no stop in the middle, gyroscope
 /// columns left out), appended to `findings`.
 void AddWalkFindings(const StillResult& still,

@@ -257,8 +257,8 @@ shell_case(repeat_process_substitution_log 0 "/dev/fd/[0-9]+: calibrated, [0-9]+
 
 # Warnings are held back when the command fails: one line (all
 # timestamps zero printed two or three warnings before the error).
-shell_case(bad_calibrate_zero_times_one_line 1 "after .*warning"
-  "awk -F, 'NR==1{print;next}{$1=0; print}' OFS=, '${_session}' > zero.csv && exec \"$0\" calibrate zero.csv -o out.json")
+shell_case(bad_calibrate_duplicates_one_line 1 "5 static positions.*\\(after a warning: .*duplicated timestamp"
+  "awk 'NR==1{print;next}{print;print}' '${GOOD_LOG}' > dup.csv && exec \"$0\" calibrate dup.csv -o out.json")
 
 # Physically impossible readings: an error naming the line (one
 # row of 1e308 gave 'threshold -nan', one of 1e20 dropped positions).
@@ -270,11 +270,33 @@ shell_case(bad_detect_huge_row_1e20 1
   "sed '200s/,[^,]*$/,1e20/' '${_session}' > huge.csv && exec \"$0\" detect huge.csv")
 shell_case(bad_calibrate_huge_times 1 "a time of [0-9.]+e\\+30[0-9] s is beyond any logger's clock"
   "awk -F, 'NR==1{print;next}{$1=$1*1e300; print}' OFS=, '${_session}' > t.csv && exec \"$0\" calibrate t.csv")
+# Times that do not advance, or by less than any sensor samples (regression:
+# steps of 1e-300 s gave 'threshold -nan ... never stops moving').
+shell_case(bad_calibrate_zero_times 1
+  "zero.csv: all 700 rows have the same time, 0 s: the time column does not advance. give --time-unit UNIT or --rate HZ"
+  "awk -F, 'NR==1{print;next}{$1=0; print}' OFS=, '${GOOD_LOG}' > zero.csv && exec \"$0\" calibrate zero.csv -o out.json")
+shell_case(bad_detect_tiny_steps 1
+  "tiny.csv: the time steps are 4e-302 s, shorter than any sensor samples \\(at most 1e\\+06 Hz"
+  "awk -F, 'NR==1{print;next}{$1=$1*1e-300; print}' OFS=, '${GOOD_LOG}' > tiny.csv && exec \"$0\" detect tiny.csv")
+mpcal_cli_test(bad_calibrate_seconds_read_as_ns EXIT 1
+  MATCH "the time steps are 4e-11 s, shorter than any sensor samples"
+  ABSENT out.json ARGS calibrate ${GOOD_LOG} --time-unit ns -o out.json)
+mpcal_cli_test(bad_calibrate_index_at_absurd_rate EXIT 1
+  MATCH "the time steps are 4e-302 s, shorter than any sensor samples"
+  ABSENT out.json ARGS calibrate ${GOOD_LOG} --time-unit index --rate 1e300 -o out.json)
+mpcal_cli_test(bad_verify_tiny_steps EXIT 1
+  MATCH "the time steps are 4e-11 s, shorter than any sensor samples"
+  ABSENT out.json ARGS verify --imu ${GOOD_LOG} --time-unit ns --gnss ${GOOD_GNSS} -o out.json)
 
 # Absurd but finite values in a calibration file (a bias of
 # 1e308 was applied), in ranges stated once (include/mpcal/plausible.h).
 shell_case(bad_apply_huge_bias 1 "'bias_mps2\\[0\\]' = 1e\\+308 is beyond any accelerometer's bias"
   "sed '0,/-0.6860732339999999/s//1e308/' '${GOOD_CALIB}' > c.json && exec \"$0\" apply c.json '${GOOD_LOG}' -o out.csv")
+# The repeatability file is read the same way (regression: a bias of 1e308
+# printed inf cells in the report).
+shell_case(bad_report_repeat_huge_bias 1
+  "r.json: 'parameters.bias_mps2.values\\[0\\]\\[0\\]' = 1e\\+308 is beyond any accelerometer's bias"
+  "sed '0,/-0.7461164775971995/s//1e308/' '${MPCAL_TEST_DATA}/report/repeat.json' > r.json && \"$0\" report --repeat r.json -o out.html; s=$?; [ -e out.html ] && s=9; exit $s")
 shell_case(bad_apply_gravity_out_of_range 1 "'gravity_mps2' = 10.4 is not a magnitude of gravity"
   "sed 's/\"gravity_mps2\": [0-9.]*/\"gravity_mps2\": 10.4/' '${GOOD_CALIB}' > c.json && exec \"$0\" apply c.json '${GOOD_LOG}' -o out.csv")
 # verify and report --session run calibrate's units check.
@@ -285,3 +307,46 @@ mpcal_cli_test(bad_verify_g_read_as_mps2 EXIT 1 MATCH "look like g: add --units 
 mpcal_cli_test(bad_report_session_counts_as_mps2 EXIT 1 MATCH "look like raw ADC counts"
   ABSENT out.html
   ARGS report --session ${MPCAL_REAL_DATA}/xsens-multiposition/xsens_acc.mat -o out.html)
+
+# An empty path is a usage error (exit 2) for every input and output of every
+# command: a shell variable that was never set, not a request for a default.
+set(_rd ${MPCAL_TEST_DATA}/report)
+set(empty_path_cases
+  calibrate_input       "calibrate ''"
+  detect_input          "detect ''"
+  apply_calibration     "apply '' '${GOOD_LOG}' -o out.csv"
+  apply_input           "apply '${GOOD_CALIB}' '' -o out.csv"
+  repeat_first          "repeat '' '${GOOD_CALIB}'"
+  repeat_second         "repeat '${GOOD_CALIB}' ''"
+  verify_imu            "verify --imu '' --gnss '${GOOD_GNSS}' -o out.json"
+  verify_gnss           "verify --imu '${GOOD_LOG}' --gnss '' -o out.json"
+  verify_calibration    "verify --imu '${GOOD_LOG}' --gnss '${GOOD_GNSS}' --calib '' -o out.json"
+  verify_trajectories   "verify --imu '${GOOD_LOG}' --gnss '${GOOD_GNSS}' -o out.json --trajectory-csv ''"
+  report_calibration    "report --calib '' -o out.html"
+  report_session        "report --session '' -o out.html"
+  report_repeat         "report --repeat '' -o out.html"
+  report_verify         "report --verify '' -o out.html"
+  report_trajectories   "report --verify '${_rd}/result.json' --verify-trajectories '' -o out.html"
+  report_noise          "report --noise '' -o out.html"
+  simulate_truth        "simulate static --positions 2 --dwell 1 -o out.csv --truth ''"
+  simulate_walk_gnss    "simulate walk -o out.csv --gnss ''"
+  simulate_walk_path    "simulate walk -o out.csv --gnss out.pos --path ''"
+  simulate_noise_output "simulate noise --hours 0.01 -o '' --truth out.json"
+  simulate_noise_truth  "simulate noise --hours 0.01 -o out.csv --truth ''"
+  demo_output_dir       "demo --output-dir ''")
+list(LENGTH empty_path_cases n)
+math(EXPR last "${n} - 1")
+foreach(i RANGE 0 ${last} 2)
+  math(EXPR j "${i} + 1")
+  list(GET empty_path_cases ${i} case)
+  list(GET empty_path_cases ${j} args)
+  shell_case(bad_empty_path_${case} 2 "the (file|directory) name is empty"
+    "\"$0\" ${args}; s=$?; for f in out.csv out.json out.html out.pos; do [ -e $f ] && s=9; done; exit $s")
+endforeach()
+
+# A walk that never moves verifies nothing (regression: an IMU at rest
+# throughout gave a raw start-to-end of 0.00 m and exit 0).
+shell_case(bad_verify_imu_never_moves 1
+  "still\\.csv: the IMU never moves: the still test finds it at rest over all [0-9.]+ s of the log"
+  "awk -F, 'NR==1{print \"t,ax,ay,az\";next}{print $1\",0.001,-0.002,9.80665\"}' '${_walk_dir}/walk.csv' > still.csv && \"$0\" verify --imu still.csv --gnss '${_walk_dir}/ref.pos' -o out.json; s=$?; [ -e out.json ] && s=9; exit $s")
+set_tests_properties(cli.bad_verify_imu_never_moves PROPERTIES FIXTURES_REQUIRED simulated_walk)

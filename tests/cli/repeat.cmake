@@ -9,20 +9,20 @@ mpcal_cli_test(repeat.help EXIT 0 MATCH "mpcal repeat monday.csv" ARGS repeat --
 # Table 4: population std of Colibri bias x, y (paper: 8e-3, 7.7e-2 g), and
 # the sample std beside it.
 mpcal_cli_test(repeat.paper_colibri_bias_x EXIT 0
-  MATCH "bias x +g${_row}0\\.007994 +0\\.009791 " ARGS repeat ${_colibri})
+  MATCH "bias x +mg${_row}7\\.994 +9\\.791 " ARGS repeat ${_colibri})
 mpcal_cli_test(repeat.paper_colibri_bias_y EXIT 0
-  MATCH "bias y +g${_row}0\\.07692 " ARGS repeat ${_colibri})
+  MATCH "bias y +mg${_row}76\\.92 " ARGS repeat ${_colibri})
 # Table 6: MTi-G bias x, y, z (paper: 7.4e-3, 1.7e-3, 1.6e-2 g).
 mpcal_cli_test(repeat.paper_mtig_bias_x EXIT 0
-  MATCH "bias x +g${_row}0\\.007473 " ARGS repeat ${_mtig})
+  MATCH "bias x +mg${_row}7\\.473 " ARGS repeat ${_mtig})
 mpcal_cli_test(repeat.paper_mtig_bias_y EXIT 0
-  MATCH "bias y +g${_row}0\\.001772 " ARGS repeat ${_mtig})
+  MATCH "bias y +mg${_row}1\\.772 " ARGS repeat ${_mtig})
 mpcal_cli_test(repeat.paper_mtig_bias_z EXIT 0
-  MATCH "bias z +g${_row}0\\.01636 " ARGS repeat ${_mtig})
+  MATCH "bias z +mg${_row}16\\.36 " ARGS repeat ${_mtig})
 # Where the paper's printed deviation does not follow from its trials: the
-# trials give 0.1646 g (printed 0.16432) and 0.5793 ppm (printed 0.61 ppm).
+# trials give 164.6 mg (printed 0.16432 g) and 0.5793 ppm (printed 0.61 ppm).
 mpcal_cli_test(repeat.paper_colibri_bias_z_computed EXIT 0
-  MATCH "bias z +g${_row}0\\.1646 " ARGS repeat ${_colibri})
+  MATCH "bias z +mg${_row}164\\.6 " ARGS repeat ${_colibri})
 mpcal_cli_test(repeat.paper_colibri_scale_x_computed EXIT 0
   MATCH "scale error x +ppm${_row}0\\.5793 " ARGS repeat ${_colibri})
 # The paper gives no per-trial 1σ: no verdict, said so.

@@ -40,3 +40,13 @@ mpcal_cli_test(report.refuses_to_overwrite_input EXIT 1 MATCH "does not overwrit
   ARGS report --calib ${_rd}/calib.json -o ${_rd}/calib.json)
 mpcal_cli_test(report.missing_directory EXIT 1 MATCH "no/such/dir"
   ARGS report --calib ${_rd}/calib.json -o no/such/dir/report.html)
+# The summary line and the links at the top name every section written, the
+# gyroscope of an IMU calibration and the noise too.
+mpcal_cli_test(report.names_gyroscope_and_noise EXIT 0
+  MATCH "wrote r\\.html \\(calibration, gyroscope, noise\\)"
+  ARGS report --calib ${MPCAL_TEST_DATA}/imu_trial_1.json
+       --noise ${MPCAL_TEST_DATA}/noise_still.json -o r.html)
+mpcal_cli_test(report.links_gyroscope_and_noise EXIT 0
+  MATCH "<nav>Sections: <a href=\"#calibration\">Calibration</a> <a href=\"#gyroscope\">Gyroscope</a> <a href=\"#noise\">Noise</a></nav>"
+  ARGS report --calib ${MPCAL_TEST_DATA}/imu_trial_1.json
+       --noise ${MPCAL_TEST_DATA}/noise_still.json -o -)

@@ -51,6 +51,20 @@ TEST(VerificationFile, ResultRoundTripsThroughItsReader) {
   EXPECT_EQ(v.trajectory_files[0].second, "/run/w-raw.csv");
 }
 
+TEST(VerificationFile, ReaderRefusesANegativeDistance) {
+  VerifyResult r = Result();
+  r.raw.start_end_distance_m = -15.5;
+  EXPECT_THAT([&] { ParseVerificationJson(VerificationToJson(r, {}), "result.json"); },
+              ::testing::ThrowsMessage<Error>(
+                  HasSubstr("result.json: 'raw.start_end_distance_m' = -15.5 m is "
+                            "negative: not a distance")));
+  r = Result();
+  r.reference.path_length_m = -1.0;
+  EXPECT_THAT([&] { ParseVerificationJson(VerificationToJson(r, {}), "result.json"); },
+              ::testing::ThrowsMessage<Error>(
+                  HasSubstr("'reference.path_length_m' = -1 m is negative")));
+}
+
 TEST(VerificationFile, TrajectoryCsvRoundTripsToTheMillimetre) {
   TimedPath path;
   path.time_s = {0.0, 0.01, 0.02};

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mpcal/error.h"
+#include "mpcal/plausible.h"
 #include "mpcal/repeat.h"
 #include "mpcal/repeatability_file.h"
 
@@ -170,6 +171,48 @@ TEST(RepeatabilityJson, ReaderRejectsBadInputNamingTheField) {
   ExpectReaderError(text, {"not valid JSON", "1e999"});
 }
 
+// Absurd but finite values are refused as the calibration file reader
+// refuses them (plausible.h): a bias of 1e308 printed inf in the report.
+TEST(RepeatabilityJson, ReaderRefusesValuesNoSensorHas) {
+  const nlohmann::json j = nlohmann::json::parse(ValidJson());
+  nlohmann::json bad = j;
+  bad["parameters"]["bias_mps2"]["values"][1][0] = 1e308;
+  ExpectReaderError(bad.dump(),
+                    {"'parameters.bias_mps2.values[1][0]' = 1e+308 is beyond any "
+                     "accelerometer's bias (±98.0665 m/s²)"});
+  bad = j;
+  bad["parameters"]["bias_mps2"]["mean"][2] = -1e308;
+  ExpectReaderError(bad.dump(), {"'parameters.bias_mps2.mean[2]' = -1e+308 is beyond"});
+  bad = j;
+  bad["parameters"]["bias_mps2"]["std_population"][0] = 1e308;
+  ExpectReaderError(bad.dump(),
+                    {"'parameters.bias_mps2.std_population[0]' = 1e+308 is not the "
+                     "spread of any accelerometer's bias (0 to 196.133 m/s²)"});
+  bad = j;
+  bad["parameters"]["scale_factor_error"]["std_sample"][1] = -0.001;
+  ExpectReaderError(bad.dump(),
+                    {"'parameters.scale_factor_error.std_sample[1]' = -0.001 is not the "
+                     "spread of any scale-factor error (0 to 1)"});
+  bad = j;
+  bad["parameters"]["scale_factor_error"]["values"][0][1] = 0.7;
+  ExpectReaderError(bad.dump(),
+                    {"'parameters.scale_factor_error.values[0][1]' = 0.7 is beyond any "
+                     "scale-factor error (±0.5)"});
+  bad = j;
+  bad["parameters"]["non_orthogonality_rad"]["zx"]["values"][2] = 3.0;
+  ExpectReaderError(bad.dump(),
+                    {"'parameters.non_orthogonality_rad.zx.values[2]' = 3 is beyond any "
+                     "non-orthogonality angle (±0.785398 rad)"});
+  bad = j;
+  bad["parameters"]["non_orthogonality_rad"]["zy"]["std_sample"] = 1e300;
+  ExpectReaderError(bad.dump(),
+                    {"'parameters.non_orthogonality_rad.zy.std_sample' = 1e+300 is not"});
+  // The limits themselves are values a sensor may have.
+  bad = j;
+  bad["parameters"]["bias_mps2"]["values"][0][0] = kMaxBiasMps2;
+  EXPECT_NO_THROW(RepeatabilityFromJson(bad.dump(), "table.json"));
+}
+
 TEST(RepeatabilityCsv, OneRowPerParameterInSi) {
   const RepeatabilityResult r = AnalyzeRepeatability(ThreeTrials(true));
   const std::string csv = RepeatabilityToCsv(r);
@@ -189,7 +232,7 @@ TEST(RepeatabilityCsv, OneRowPerParameterInSi) {
   EXPECT_THAT(no_std, ::testing::EndsWith(",,,\n"));
 }
 
-TEST(RepeatabilityTable, PrintsTheTrialsMeanAndBothDeviationsInThePapersUnits) {
+TEST(RepeatabilityTable, PrintsTheTrialsMeanAndBothDeviationsInTheTableUnits) {
   const std::vector<std::string> names = {"mon.csv", "tue.csv", "wed.json"};
   const RepeatabilityResult r = AnalyzeRepeatability(ThreeTrials(true), names);
   const std::string table = FormatRepeatabilityTable(r);
@@ -200,20 +243,28 @@ TEST(RepeatabilityTable, PrintsTheTrialsMeanAndBothDeviationsInThePapersUnits) {
                     HasSubstr("std (n-1)"),
                     HasSubstr("mean"),
                     HasSubstr("desvio")));
-  // Bias in g (6 decimals), scale in ppm, angles in rad.
-  EXPECT_THAT(table, HasSubstr(fmt::format(" {:.6f} ", -0.686 / kStandardGravityMps2)));
+  // Bias in mg (3 decimals), scale in ppm, angles in mrad: the README's
+  // conventions, as in every other table.
+  EXPECT_THAT(table,
+              HasSubstr(fmt::format(" {:.3f} ", -0.686 / kStandardGravityMps2 * 1e3)));
   EXPECT_THAT(table, HasSubstr("-1998.00"));
-  EXPECT_THAT(table, HasSubstr("0.001820"));
+  EXPECT_THAT(table, HasSubstr(" 1.820 "));
   std::istringstream in(table);
   std::string bias_x;
   for (std::string line; std::getline(in, line);) {
     if (line.rfind("bias x", 0) == 0) bias_x = line;
   }
-  EXPECT_THAT(bias_x, AllOf(HasSubstr(" g "), HasSubstr("CHANGED")));
-  // Population std of bias x, in g, to 4 digits.
-  EXPECT_THAT(bias_x,
-              HasSubstr(fmt::format(
-                  " {:.4g} ", r.parameters[0].std_population / kStandardGravityMps2)));
+  EXPECT_THAT(bias_x, AllOf(HasSubstr(" mg "), HasSubstr("CHANGED")));
+  // Population std of bias x, in mg, to 4 digits.
+  EXPECT_THAT(
+      bias_x,
+      HasSubstr(fmt::format(
+          " {:.4g} ", r.parameters[0].std_population / kStandardGravityMps2 * 1e3)));
+  std::string theta_yz;
+  for (std::istringstream again(table); std::getline(again, theta_yz);) {
+    if (theta_yz.rfind("non-orth. yz", 0) == 0) break;
+  }
+  EXPECT_THAT(theta_yz, HasSubstr(" mrad "));
 }
 
 }  // namespace

@@ -2,7 +2,9 @@
 // are, well-formed markup, no external reference, escaping, the paper's units.
 #include "mpcal/report.h"
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <regex>
 #include <string>
 #include <vector>
@@ -10,7 +12,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "mpcal/calibration_file.h"
 #include "mpcal/error.h"
+#include "mpcal/noise_file.h"
 #include "report_fixtures.h"
 #include "test_util.h"
 
@@ -227,6 +231,48 @@ TEST(Report, NonFiniteAndEmptyDataDoNotBreakTheFigures) {
   html = RenderReport(empty);
   EXPECT_THAT(html, HasSubstr("The recording is empty."));
   EXPECT_EQ(CheckMarkup(html), "");
+}
+
+// Values no reader lets through (a bias of 1e308 read as inf mg) still print
+// as a dash, never as "inf" or "nan".
+TEST(Report, NonFiniteValuesPrintNoInfOrNanCell) {
+  ReportInputs in = testing::FullInputs();
+  in.repeatability->parameters[0].values[1] = 1e308;
+  in.repeatability->parameters[0].mean = std::numeric_limits<double>::infinity();
+  in.repeatability->parameters[4].std_sample = std::nan("");
+  in.calibration->positions.at(0).residual_after_mps2 = 1e308;
+  const std::string html = RenderReport(in);
+  EXPECT_EQ(CheckMarkup(html), "");
+  EXPECT_THAT(html, Not(HasSubstr("inf")));
+  EXPECT_THAT(html, Not(HasSubstr("nan")));
+}
+
+// The links at the top name every section the report holds: the gyroscope
+// and the noise too, each once, in the order of the page.
+TEST(Report, LinksListEverySectionPresent) {
+  ReportInputs in = testing::FullInputs();
+  in.calibration = ReadCalibrationFile(mpcal::testing::TestDataPath("imu_trial_1.json"));
+  in.noise = ReadNoiseFile(mpcal::testing::TestDataPath("noise_still.json"));
+  const std::string html = RenderReport(in);
+  ASSERT_EQ(CheckMarkup(html), "");
+  const std::size_t nav_begin = html.find("<nav>");
+  ASSERT_NE(nav_begin, std::string::npos);
+  const std::string nav = html.substr(nav_begin, html.find("</nav>") - nav_begin);
+  std::string expected = "<nav>Sections:";
+  std::size_t sections = 0;
+  static const std::regex kSection("<section id=\"([a-z]+)\">\n<h2>([^<]+)</h2>");
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), kSection);
+       it != std::sregex_iterator();
+       ++it, ++sections) {
+    expected += " <a href=\"#" + (*it)[1].str() + "\">" + (*it)[2].str() + "</a>";
+  }
+  EXPECT_EQ(sections, 6u);  // calibration, gyroscope, session, repeatability,
+                            // verification, noise
+  EXPECT_EQ(nav, expected);
+  EXPECT_THAT(nav, HasSubstr("<a href=\"#gyroscope\">Gyroscope</a>"));
+  EXPECT_THAT(nav, HasSubstr("<a href=\"#noise\">Noise</a>"));
+  // The product speaks of the product: no tracker numbers.
+  EXPECT_THAT(html, Not(HasSubstr("issue")));
 }
 
 TEST(Report, ZoomsOnTheReferenceWhenTheRawPathWandersOff) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <Eigen/QR>
@@ -17,7 +18,9 @@
 namespace mpcal {
 namespace {
 
+using ::testing::AnyOf;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 // Whether the coverage's advice offers the 6-parameter model (bias-scale-6).
 bool OffersSixParameterModel(const CoverageResult& coverage) {
@@ -106,11 +109,38 @@ TEST(CalibrateRecording, CatchesAMps2LogReadAsG) {
     CalibrateRecording(s.recording, {});
     FAIL();
   } catch (const UnitsError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("look like m/s2"));
+    // One spelling of each unit, the README's (m/s², g).
+    EXPECT_NEAR(e.finding().median_magnitude, kStandardGravityMps2, 0.1);
+    EXPECT_THAT(e.what(),
+                HasSubstr(fmt::format("the readings have a median magnitude of {:.4g} g, "
+                                      "but gravity is 1 g (9.8066 m/s\u00b2); the "
+                                      "readings look like m/s\u00b2",
+                                      e.finding().median_magnitude)));
+    EXPECT_THAT(e.what(), Not(AnyOf(HasSubstr("mps2"), HasSubstr("m/s2"))));
     EXPECT_EQ(e.finding().guess, UnitsGuess::kMps2);
     ASSERT_EQ(e.advice().settings.size(), 1u);
     EXPECT_EQ(e.advice().settings[0].option, Option::kLogUnits);
     EXPECT_EQ(e.advice().settings[0].value, "mps2");
+  }
+}
+
+TEST(CalibrateRecording, CatchesAGLogReadAsMps2InOneUnitSpelling) {
+  SimulateStaticOptions options = Session("mti-g", 6);
+  options.units = AccelUnits::kG;
+  SimulatedSession s = SimulateStatic(options);
+  s.recording.units = AccelUnits::kMps2;  // the user left --units out
+  try {
+    CalibrateRecording(s.recording, {});
+    FAIL();
+  } catch (const UnitsError& e) {
+    EXPECT_NEAR(e.finding().median_magnitude, 1.0, 0.01);
+    EXPECT_THAT(e.what(),
+                HasSubstr(fmt::format("the readings have a median magnitude of {:.4g} "
+                                      "m/s\u00b2, but gravity is 9.8066 m/s\u00b2; the "
+                                      "readings look like g",
+                                      e.finding().median_magnitude)));
+    EXPECT_THAT(e.what(), Not(AnyOf(HasSubstr("mps2"), HasSubstr("m/s2"))));
+    EXPECT_EQ(e.finding().guess, UnitsGuess::kG);
   }
 }
 

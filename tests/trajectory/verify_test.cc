@@ -351,7 +351,7 @@ TEST(Verify, WrongUnitsAndInputsAreErrors) {
   one.enu_m.resize(1);
   one.quality.resize(1);
   EXPECT_THAT([&] { Verify(w.recording, one, std::nullopt, {}); },
-              ThrowsMessage<Error>(HasSubstr("1 epochs")));
+              ThrowsMessage<Error>(HasSubstr("the reference has 1 epoch; a walk")));
   // A reference that never leaves its start has no heading.
   GnssTrack still = ref;
   for (Eigen::Vector3d& p : still.enu_m) p.setZero();
@@ -361,6 +361,30 @@ TEST(Verify, WrongUnitsAndInputsAreErrors) {
   bad.heading_distance_m = -1.0;
   EXPECT_THAT([&] { Verify(w.recording, ref, std::nullopt, bad); },
               ThrowsMessage<Error>(HasSubstr("heading_distance_m")));
+}
+
+// At rest throughout, the zero-velocity updates hold the integration at its
+// start: 0 m from start to end is no verdict on the calibration.
+TEST(Verify, AnImuThatNeverMovesVerifiesNothing) {
+  const SimulatedWalk w = SmallWalk();
+  const GnssTrack ref = ParseGnss(FormatRtklibPos(w.gnss), "walk.pos");
+  Recording still = w.recording;
+  still.source = "still.csv";
+  // Lying flat with the noise the walk's sensor has (a reading of the rest).
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.003);
+  for (Eigen::Vector3d& a : still.accel) {
+    a = Eigen::Vector3d(noise(rng), noise(rng), 9.80665 + noise(rng));
+  }
+  for (Eigen::Vector3d& g : still.gyro_radps) g = Eigen::Vector3d(noise(rng), 0.0, 0.0);
+  const double span_s = still.time_s.back() - still.time_s.front();
+  EXPECT_THAT([&] { Verify(still, ref, w.truth, {}); },
+              ThrowsMessage<Error>(HasSubstr(
+                  fmt::format("still.csv: the IMU never moves: the still test finds it "
+                              "at rest over all {:.1f} s of the log",
+                              span_s))));
+  // The walk itself moves.
+  EXPECT_GT(Verify(w.recording, ref, w.truth, {}).raw.path_length_m, 10.0);
 }
 
 TEST(Verify, ResultJsonHasTheIssuesKeys) {
