@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Whole-process speed of `mpcal calibrate` and `mpcal apply` on a long log
-# (issue 4), each as a ratio to its floor measured in the same run:
+# Whole-process speed of `mpcal calibrate` and `mpcal apply` on a long log,
+# each as a ratio to its floor measured in the same run:
 #   calibrate : floor = read the file + parse every number with fast_float
 #   apply     : floor = the same + write every number back with std::to_chars
 # plus peak memory (RSS) beside the file's size, and calibrate on the real

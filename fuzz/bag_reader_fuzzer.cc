@@ -6,9 +6,6 @@
 // or mpcal::Error is a finding: another exception, a sanitizer report, a
 // timeout or memory beyond the limit (every length is checked against what
 // remains and the caps in bag.h), or a batch that breaks the sink's contract.
-#include <sys/mman.h>
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -17,40 +14,14 @@
 #include <string>
 #include <vector>
 
+#include "memory_file.h"
 #include "mpcal/bag.h"
 #include "mpcal/error.h"
 
-namespace {
-
-int MemoryFile() {
-  static const int fd = [] {
-    const int f = ::memfd_create("mpcal_fuzz_bag", MFD_CLOEXEC);
-    if (f < 0) {
-      std::perror("memfd_create");
-      std::abort();
-    }
-    return f;
-  }();
-  return fd;
-}
-
-void Check(bool ok, const char* what) {
-  if (!ok) {
-    std::fprintf(stderr, "invariant broken: %s\n", what);
-    std::abort();
-  }
-}
-
-}  // namespace
+using mpcal::fuzz::Check;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const int fd = MemoryFile();
-  if (::ftruncate(fd, 0) != 0 ||
-      ::pwrite(fd, data, size, 0) != static_cast<ssize_t>(size)) {
-    std::perror("memfd write");
-    std::abort();
-  }
-  const std::string path = "/proc/self/fd/" + std::to_string(fd);
+  const std::string path = mpcal::fuzz::WriteMemoryFile(data, size);
   try {
     const mpcal::BagSummary summary = mpcal::InspectBag(path);
     for (const mpcal::BagTopic& t : summary.topics)

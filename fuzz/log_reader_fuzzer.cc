@@ -8,9 +8,6 @@
 // disk. Any outcome but success or mpcal::Error is a finding: an uncaught exception of
 // another type, a sanitizer report, or a Recording that breaks its documented invariants
 // (finite values, strictly increasing time).
-#include <sys/mman.h>
-#include <unistd.h>
-
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -20,31 +17,11 @@
 #include <string_view>
 
 #include "log_reader_input.h"
+#include "memory_file.h"
 #include "mpcal/error.h"
 #include "mpcal/log_reader.h"
 
-namespace {
-
-int MemoryFile() {
-  static const int fd = [] {
-    const int f = ::memfd_create("mpcal_fuzz_log", MFD_CLOEXEC);
-    if (f < 0) {
-      std::perror("memfd_create");
-      std::abort();
-    }
-    return f;
-  }();
-  return fd;
-}
-
-void Check(bool ok, const char* what) {
-  if (!ok) {
-    std::fprintf(stderr, "invariant broken: %s\n", what);
-    std::abort();
-  }
-}
-
-}  // namespace
+using mpcal::fuzz::Check;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
@@ -52,13 +29,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view rest = in.log;
   const mpcal::LogOptions& options = in.options;
 
-  const int fd = MemoryFile();
-  if (::ftruncate(fd, 0) != 0 ||
-      ::pwrite(fd, rest.data(), rest.size(), 0) != static_cast<ssize_t>(rest.size())) {
-    std::perror("memfd write");
-    std::abort();
-  }
-  const std::string path = "/proc/self/fd/" + std::to_string(fd);
+  const std::string path = mpcal::fuzz::WriteMemoryFile(rest.data(), rest.size());
 
   try {
     if (in.use_scanner) {
