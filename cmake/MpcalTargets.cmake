@@ -29,7 +29,8 @@ function(mpcal_room name)
            $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>
     PRIVATE ${PROJECT_SOURCE_DIR}/src)
   target_compile_features(mpcal_${name} PUBLIC cxx_std_20)
-  set_target_properties(mpcal_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  set_target_properties(mpcal_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON
+    UNITY_BUILD ${MPCAL_UNITY_BUILD})
   target_link_libraries(mpcal_${name}
     PUBLIC Eigen3::Eigen ${ROOM_PUBLIC}
     PRIVATE $<BUILD_INTERFACE:mpcal_warnings> ${ROOM_PRIVATE})

@@ -4,7 +4,8 @@
 #   2. no file in src/ is over 600 lines;
 #   3. clang-tidy (.clang-tidy: bugprone-*, performance-*, functions of
 #      cognitive complexity <= 40 and <= 80 lines) is clean on src/ and apps/.
-# usage: scripts/lint.sh [BUILD_DIR]   (BUILD_DIR holds compile_commands.json)
+# usage: scripts/lint.sh [BUILD_DIR]   (clang-tidy's compile commands go to
+#        BUILD_DIR/tidy-commands)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -25,12 +26,19 @@ while read -r lines file; do
   fi
 done < <(git ls-files 'src/*.cc' 'src/*.h' | xargs wc -l)
 
-if [[ ! -f $build/compile_commands.json ]]; then
-  echo "lint: $build/compile_commands.json is missing; configure with cmake first" >&2
+# clang-tidy needs a compile command per .cc file; a unity build (the
+# default) lists its batches instead, so the commands come from a
+# configure-only tree, BUILD_DIR/tidy-commands, with MPCAL_UNITY_BUILD=OFF.
+commands=$build/tidy-commands
+if ! cmake -S . -B "$commands" -DMPCAL_UNITY_BUILD=OFF -DMPCAL_BUILD_TESTS=OFF \
+    -DMPCAL_BUILD_BENCH=OFF -DMPCAL_BUILD_EXAMPLES=OFF >/tmp/mpcal-configure.$$ 2>&1; then
+  cat /tmp/mpcal-configure.$$ >&2
+  echo "lint: configuring $commands for clang-tidy's compile commands failed (above)" >&2
   exit 1
 fi
+rm -f /tmp/mpcal-configure.$$
 mapfile -t sources < <(git ls-files 'src/*.cc' 'apps/*.cc')
-if ! run-clang-tidy -quiet -p "$build" -j "$(nproc)" "${sources[@]/#/$PWD/}" \
+if ! run-clang-tidy -quiet -p "$commands" -j "$(nproc)" "${sources[@]/#/$PWD/}" \
     >/tmp/mpcal-tidy.$$ 2>&1; then
   grep -E 'warning:|error:' /tmp/mpcal-tidy.$$ | sort -u >&2 || cat /tmp/mpcal-tidy.$$ >&2
   echo "lint: clang-tidy found the problems above" >&2

@@ -14,7 +14,7 @@
 namespace mpcal::internal {
 namespace {
 
-Eigen::Matrix3d Hat(const Eigen::Vector3d& v) {
+Eigen::Matrix3d CrossMatrix(const Eigen::Vector3d& v) {
   Eigen::Matrix3d k;
   k << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
   return k;
@@ -403,7 +403,7 @@ Eigen::Matrix<double, 2, 3> Residual(const TurnData& turn,
   const Eigen::Vector3d carried = r.transpose() * turn.u_from;
   if (residual != nullptr) *residual = turn.basis_to.transpose() * carried;
   // R' = R exp([δθ]×) carries u to exp(−[δθ]×) Rᵀu ≈ Rᵀu + [Rᵀu]× δθ.
-  return turn.basis_to.transpose() * Hat(carried);
+  return turn.basis_to.transpose() * CrossMatrix(carried);
 }
 
 }  // namespace

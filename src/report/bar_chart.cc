@@ -7,7 +7,7 @@ namespace mpcal::report {
 
 namespace {
 
-constexpr PlotMargins kMargins;
+constexpr PlotMargins kBarMargins;
 // Category labels closer than this (user units) are thinned out.
 constexpr double kMinLabelSpacing = 22.0;
 
@@ -22,14 +22,14 @@ std::string BarChart(const BarChartSpec& spec) {
     legend.push_back({m.name, m.style, false, "", false});
   }
   legend.insert(legend.end(), spec.extra_legend.begin(), spec.extra_legend.end());
-  const double plot_width = spec.width - kMargins.left - kMargins.right;
+  const double plot_width = spec.width - kBarMargins.left - kBarMargins.right;
   const double legend_height = LegendHeight(legend, plot_width);
-  const PlotArea area{kMargins.left,
-                      kMargins.top,
+  const PlotArea area{kBarMargins.left,
+                      kBarMargins.top,
                       plot_width,
-                      spec.height - kMargins.top - kMargins.bottom};
+                      spec.height - kBarMargins.top - kBarMargins.bottom};
   Svg svg(spec.width,
-          spec.height + (legend_height > 0 ? legend_height + kMargins.legend_gap : 0),
+          spec.height + (legend_height > 0 ? legend_height + kBarMargins.legend_gap : 0),
           spec.aria_label);
 
   std::vector<double> values{0.0};
@@ -90,7 +90,7 @@ std::string BarChart(const BarChartSpec& spec) {
     svg.CloseGroup();
   }
   if (legend_height > 0) {
-    DrawLegend(svg, legend, area.left, spec.height + kMargins.legend_gap, plot_width);
+    DrawLegend(svg, legend, area.left, spec.height + kBarMargins.legend_gap, plot_width);
   }
   return svg.Finish();
 }

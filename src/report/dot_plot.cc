@@ -11,7 +11,7 @@ namespace mpcal::report {
 namespace {
 
 // Wider on the left: the rows are labelled with parameter names.
-constexpr PlotMargins kMargins{.left = 150.0, .top = 10.0};
+constexpr PlotMargins kDotMargins{.left = 150.0, .top = 10.0};
 
 // The x range of every value and band (and what it must include), padded,
 // clipped to ±clip_abs.
@@ -115,14 +115,14 @@ std::string DotPlot(const DotPlotSpec& spec) {
   }
   if (!spec.band_legend.empty())
     legend.push_back({spec.band_legend, {}, true, "band", false});
-  const double plot_width = spec.width - kMargins.left - kMargins.right;
+  const double plot_width = spec.width - kDotMargins.left - kDotMargins.right;
   const double legend_height = LegendHeight(legend, plot_width);
   const double plot_height =
       spec.row_height * static_cast<double>(std::max<std::size_t>(spec.rows.size(), 1));
-  const double height = kMargins.top + plot_height + kMargins.bottom;
-  const PlotArea area{kMargins.left, kMargins.top, plot_width, plot_height};
+  const double height = kDotMargins.top + plot_height + kDotMargins.bottom;
+  const PlotArea area{kDotMargins.left, kDotMargins.top, plot_width, plot_height};
   Svg svg(spec.width,
-          height + (legend_height > 0 ? legend_height + kMargins.legend_gap : 0),
+          height + (legend_height > 0 ? legend_height + kDotMargins.legend_gap : 0),
           spec.aria_label);
   const Ticks xt = XTicks(spec);
   const LinearScale x{xt.range.lo, xt.range.hi, area.left, area.right()};
@@ -135,7 +135,7 @@ std::string DotPlot(const DotPlotSpec& spec) {
     DrawRow(svg, spec.rows[i], y(static_cast<double>(i) + 0.5), area, xt, x);
   }
   if (legend_height > 0)
-    DrawLegend(svg, legend, area.left, height + kMargins.legend_gap, plot_width);
+    DrawLegend(svg, legend, area.left, height + kDotMargins.legend_gap, plot_width);
   return svg.Finish();
 }
 

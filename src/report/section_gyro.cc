@@ -23,7 +23,7 @@ namespace mpcal::report {
 namespace {
 
 constexpr double kDegPerRad = 180.0 / std::numbers::pi;
-constexpr const char* kAxis = "xyz";
+constexpr const char* kAxisLetters = "xyz";
 
 std::string MatrixTable(const GyroCalibration& g) {
   const bool has_std = g.m_covariance.has_value();
@@ -91,7 +91,7 @@ std::string BiasFigure(const GyroCalibration& g) {
   }
   for (int axis = 0; axis < 3; ++axis) {
     constexpr std::array<const char*, 3> kClass = {"bar", "bar-dark", "bar-z"};
-    BarSeries series{fmt::format("{}", kAxis[axis]), {}, kClass[axis], {}};
+    BarSeries series{fmt::format("{}", kAxisLetters[axis]), {}, kClass[axis], {}};
     for (const GyroBiasSample& b : g.position_bias) {
       series.values.push_back((b.bias_radps[axis] - mean[axis]) * kDegPerRad);
     }
