@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <CLI/CLI.hpp>
 
 #include "reference.h"
@@ -65,23 +66,19 @@ std::string Roff(std::string_view text) {
 }
 
 std::string Join(const std::vector<std::string>& words, std::string_view separator) {
-  std::string out;
-  for (const std::string& w : words)
-    out += (out.empty() ? "" : std::string(separator)) + w;
-  return out;
+  return fmt::format("{}", fmt::join(words, separator));
 }
 
-std::string PageName(const CLI::App& app) {
-  std::vector<std::string> words = CommandPath(app);
-  words.insert(words.begin(), "mpcal");
-  return Join(words, "-");
+/// "mpcal" and the subcommands down to `app`, joined by `separator`.
+std::string Spelled(const CLI::App& app, std::string_view separator) {
+  return fmt::format("mpcal{}{}",
+                     app.get_parent() == nullptr ? "" : separator,
+                     fmt::join(CommandPath(app), separator));
 }
 
-std::string CommandLine(const CLI::App& app) {
-  std::vector<std::string> words = CommandPath(app);
-  words.insert(words.begin(), "mpcal");
-  return Join(words, " ");
-}
+std::string PageName(const CLI::App& app) { return Spelled(app, "-"); }
+
+std::string CommandLine(const CLI::App& app) { return Spelled(app, " "); }
 
 std::string Upper(std::string text) {
   for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
