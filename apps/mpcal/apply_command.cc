@@ -128,9 +128,13 @@ void PrintSummary(const ApplyFlags& flags,
     auto name = [](GyroUnits u) {
       return u == GyroUnits::kDps ? "deg/s" : u == GyroUnits::kRadps ? "rad/s" : "counts";
     };
-    fmt::print(", gyroscope from {} to {}",
-               name(result.log_gyro_units),
-               name(result.out_gyro_units));
+    if (result.log_gyro_units == result.out_gyro_units) {
+      fmt::print(", gyroscope in {}", name(result.out_gyro_units));
+    } else {
+      fmt::print(", gyroscope from {} to {}",
+                 name(result.log_gyro_units),
+                 name(result.out_gyro_units));
+    }
   }
   if (result.rest_magnitude_mps2) {
     fmt::print("; |a| at rest {:.5f} m/s², gravity {:.5f} m/s²",

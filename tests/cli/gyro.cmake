@@ -113,7 +113,7 @@ set_tests_properties(cli.apply_imu_units_given_on_the_command_line_win PROPERTIE
 # The IMU files written before the block recorded the log's units are read as
 # they were: rad/s (imu_trial_1.json) and counts (xsens_imu_half1.json).
 add_test(NAME cli.apply_imu_file_in_rads_reads_as_before
-  COMMAND ${MPCAL_CLI_EXPECT} 0 "gyroscope from rad/s to rad/s"
+  COMMAND ${MPCAL_CLI_EXPECT} 0 "gyroscope in rad/s;"
           --workdir ${CMAKE_CURRENT_BINARY_DIR}/apply_imu_file_in_rads_reads_as_before
           -- sh -c "\"$0\" simulate static --preset colibri --gyro --seed 1 --positions 12 --dwell 3 -o s.csv > /dev/null && exec \"$0\" apply '${_imu1}' s.csv -o out.csv"
           $<TARGET_FILE:mpcal_cli>)
