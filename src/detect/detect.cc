@@ -92,8 +92,12 @@ double QuietLevel(const std::vector<double>& stat,
                   double quantile,
                   double step_floor) {
   const std::size_t centres = last + 1 - first;
-  constexpr std::size_t kSample = 65536;
-  const std::size_t stride = centres <= 4 * kSample ? 1 : centres / kSample;
+  // A strided sample brackets the quantile and QuantileOf selects among the
+  // values inside the bracket only (exactly the quantile of every centre); a
+  // copy of every centre would be as large as the statistic itself, on a
+  // short log the largest array alive beside the samples.
+  constexpr std::size_t kSample = 8192;
+  const std::size_t stride = std::max<std::size_t>(1, centres / kSample);
   std::vector<double> sample;
   sample.reserve(centres / stride + 1);
   for (std::size_t c = first; c <= last; c += stride) sample.push_back(stat[c]);
