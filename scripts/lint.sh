@@ -37,6 +37,8 @@ if ! cmake -S . -B "$commands" -DMPCAL_UNITY_BUILD=OFF -DMPCAL_BUILD_TESTS=OFF \
   exit 1
 fi
 rm -f /tmp/mpcal-configure.$$
+# The one generated header a source includes (`mpcal --version`'s revision).
+cmake --build "$commands" --target mpcal_git_revision >/dev/null
 mapfile -t sources < <(git ls-files 'src/*.cc' 'apps/*.cc')
 if ! run-clang-tidy -quiet -p "$commands" -j "$(nproc)" "${sources[@]/#/$PWD/}" \
     >/tmp/mpcal-tidy.$$ 2>&1; then
