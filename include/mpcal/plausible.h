@@ -93,8 +93,8 @@ inline constexpr double kMaxGyroGSensitivityRadpsPerMps2 =
 /// 2^31, as for the accelerometer (kMinCountsPerG, kMaxCountsPerG).
 inline constexpr double kMinCountsPerRadps = 1e-3;
 inline constexpr double kMaxCountsPerRadps = 2147483648.0;
-/// A sample period (s) between 1 µs (1 MHz) and one hour.
-inline constexpr double kMinSamplePeriodS = 1e-6;
+/// The longest sample period a calibration file may record (s): one hour
+/// (the shortest is kMinSamplePeriodS above).
 inline constexpr double kMaxSamplePeriodS = 3600.0;
 
 }  // namespace mpcal
