@@ -89,7 +89,7 @@ std::string FormatChecks(const std::vector<Check>& checks, std::FILE* stream) {
   for (const Check& c : checks) {
     out += fmt::format("  {:<11} {} {}\n",
                        ToString(c.kind),
-                       PaintVerdict(stream, c.verdict, 10),
+                       PaintVerdict(stream, c.verdict, 11),
                        ExplainCheck(c));
   }
   return out;

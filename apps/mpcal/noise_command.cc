@@ -193,7 +193,7 @@ void PrintSensorVerdict(const SensorNoise& s, bool gyro, const NoiseResult& r) {
                        FormatRecordLength(*needed));
   fmt::print("{:<14} {} {}\n",
              gyro ? "gyroscope" : "accelerometer",
-             PaintVerdict(stdout, verdict, 10),
+             PaintVerdict(stdout, verdict, 11),
              why);
 }
 
