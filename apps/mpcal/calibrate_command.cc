@@ -10,6 +10,7 @@
 #include "calibration_table.h"
 #include "cli_options.h"
 #include "command.h"
+#include "explain_checks.h"
 #include "explain_detect.h"
 #include "gyro_table.h"
 #include "mpcal/atomic_file.h"
@@ -20,6 +21,7 @@
 #include "mpcal/error.h"
 #include "mpcal/gyro_log.h"
 #include "mpcal/log_reader.h"
+#include "mpcal/verdict.h"
 #include "progress.h"
 
 namespace mpcal::cli {
@@ -32,6 +34,7 @@ struct CalibrateFlags {
   LogOptions log;
   GravityFlags gravity;
   CalibrateOptions calibrate;
+  bool verbose = false;
 };
 
 // The options that shaped the result, as a command line a user can rerun.
@@ -136,14 +139,16 @@ void Run(CalibrateFlags& f) {
              recording.time_s.back() - recording.time_s.front(),
              ToString(f.calibrate.solve.model),
              f.calibrate.solve.gravity_mps2);
-  fmt::print(
-      "{}\n{}", FormatParameterTable(result.calibration), FormatFitSummary(result));
+  fmt::print("{}", FormatParameterTable(result.calibration, {}, f.verbose));
+  if (f.verbose) fmt::print("\n{}", FormatFitSummary(result));
   if (result.gyro) {
     if (result.calibration.gyroscope) {
-      fmt::print("\n{}", FormatGyroTable(*result.calibration.gyroscope));
+      fmt::print("\n{}",
+                 FormatGyroTable(*result.calibration.gyroscope, nullptr, "", f.verbose));
     }
-    fmt::print("{}", FormatGyroSummary(*result.gyro));
+    if (f.verbose) fmt::print("{}", FormatGyroSummary(*result.gyro));
   }
+  fmt::print("\n{}", FormatChecks(JudgeCalibration(result, f.calibrate), stdout));
   PrintWarnings(result.warnings);
   if (result.gyro) {
     // The file says what the command says: a gyroscope that is not
@@ -209,6 +214,11 @@ void AddCalibrateCommand(CLI::App& root) {
       ->group("Gyroscope");
   AddGravityOptions(*app, flags->gravity);
   AddCalibrateOptions(*app, flags->calibrate);
+  app->add_flag("-v,--verbose",
+                flags->verbose,
+                "Also print the diagnostics behind each check: the fit's residuals and "
+                "variance factor, the white noise, the drift test's p, the split-half z "
+                "per parameter, the nominal scale of counts, the gyroscope's turns");
   app->footer(
       "Examples:\n"
       "  mpcal calibrate session.csv -o calib.json\n"
@@ -220,7 +230,10 @@ void AddCalibrateCommand(CLI::App& root) {
       "  mpcal calibrate six_poses.csv --model bias-scale-6 --latitude 49.6 --height "
       "300\n"
       "  mpcal calibrate arduino_serial.txt --units counts --counts-per-g 16384 -o "
-      "mpu6050.json");
+      "mpu6050.json\n\n"
+      "The table is followed by one line per check: good, look at (usable, but read "
+      "why) or do not use. Verdicts and warnings are coloured on a terminal; set "
+      "NO_COLOR=1 for plain text.");
   app->callback([flags] { Run(*flags); });
 }
 

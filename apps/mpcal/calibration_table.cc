@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "colour.h"
 #include "mpcal/count.h"
 #include "mpcal/noise.h"
 #include "mpcal/noise_units.h"
@@ -86,7 +87,8 @@ std::string FormatSplitHalf(const SplitHalfSummary& check) {
 }  // namespace
 
 std::string FormatParameterTable(const Calibration& calibration,
-                                 const std::vector<ExtraColumn>& extra) {
+                                 const std::vector<ExtraColumn>& extra,
+                                 bool details) {
   const auto value = ToVector(calibration.model);
   const std::optional<Eigen::Matrix<double, 9, 1>> sigma =
       calibration.std ? std::optional(ToVector(*calibration.std)) : std::nullopt;
@@ -127,7 +129,7 @@ std::string FormatParameterTable(const Calibration& calibration,
         d.p_value,
         d.reference_time_s);
   }
-  if (calibration.input_units == AccelUnits::kCounts) {
+  if (details && calibration.input_units == AccelUnits::kCounts) {
     out += fmt::format(
         "readings in counts, scaled by the nominal {:.6g} m/s2 per count "
         "(bias x, y, z = {:.1f}, {:.1f}, {:.1f} counts)\n",
@@ -208,7 +210,8 @@ std::vector<std::string> TakeHeldWarnings() {
 
 void FlushWarnings() {
   std::fflush(stdout);
-  for (const auto& w : TakeHeldWarnings()) fmt::print(stderr, "mpcal: warning: {}\n", w);
+  const std::string prefix = Paint(stderr, "mpcal: warning:", Tint::kLookAt);
+  for (const auto& w : TakeHeldWarnings()) fmt::print(stderr, "{} {}\n", prefix, w);
 }
 
 }  // namespace mpcal::cli

@@ -18,9 +18,11 @@ struct ExtraColumn {
   Eigen::Matrix<double, 9, 1> values_si;
 };
 
-/// The parameter table of `calibration`, with optional extra columns.
+/// The parameter table of `calibration`, with optional extra columns; with
+/// `details`, the nominal scale of raw counts under it.
 std::string FormatParameterTable(const Calibration& calibration,
-                                 const std::vector<ExtraColumn>& extra = {});
+                                 const std::vector<ExtraColumn>& extra = {},
+                                 bool details = true);
 
 /// The positions found and how the fit went, a few lines.
 std::string FormatFitSummary(const CalibrateResult& result);

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "cli_options.h"
+#include "colour.h"
 #include "command.h"
 #include "explain_detect.h"
 #include "mpcal/atomic_file.h"
@@ -30,6 +31,7 @@ struct DetectFlags {
   LogOptions log;
   GravityFlags gravity;
   CalibrateOptions calibrate;
+  bool verbose = false;
 };
 
 std::string JoinDirections(const std::vector<int>& idx) {
@@ -225,11 +227,19 @@ void Run(DetectFlags& f) {
              UnitSymbol(rec.units));
   // On stdout with the report, so that stderr keeps to the one error line.
   for (const auto& w : rec.warnings) fmt::print("  note: {}\n", w);
-  PrintDetection(rec, det, o);
+  if (f.verbose) PrintDetection(rec, det, o);
   for (const auto& n : det.notes) fmt::print("  note: {}\n", ExplainNote(n));
-  PrintIntervals(rec, det, cov);
-  PrintTurns(rec, turns, gyro_scale, f.log.gyro_units());
-  PrintCoverage(cov, co);
+  if (f.verbose) {
+    PrintIntervals(rec, det, cov);
+    PrintTurns(rec, turns, gyro_scale, f.log.gyro_units());
+    PrintCoverage(cov, co);
+  } else if (cov.positions > 0) {
+    fmt::print("{}, {} of 26 cube directions (missing: {}){}\n",
+               Count(det.intervals.size(), "static position"),
+               cov.covered.size(),
+               JoinDirections(cov.missing),
+               turns.empty() ? "" : fmt::format(", {}", Count(turns.size(), "turn")));
+  }
 
   if (!f.json.empty()) {
     const DetectionWords words = ExplainDetectionWords(det, cov);
@@ -241,7 +251,11 @@ void Run(DetectFlags& f) {
     throw Error(ErrorKind::kSession, f.input + ": " + ExplainDetection(det.finding));
   }
 
-  fmt::print("\nverdict: {}\n", ToString(cov.verdict));
+  const Tint tint = cov.verdict == CoverageVerdict::kGood ? Tint::kGood
+                    : cov.verdict == CoverageVerdict::kUsableWithWarnings
+                        ? Tint::kLookAt
+                        : Tint::kDoNotUse;
+  fmt::print("\nverdict: {}\n", Paint(stdout, ToString(cov.verdict), tint));
   for (const auto& p : cov.problems) fmt::print("  - {}\n", ExplainProblem(p));
   for (const auto& a : cov.advice) fmt::print("  next: {}\n", ExplainStep(a));
   if (!cov.good_enough()) throw Error(ErrorKind::kSession, ExplainSummary(cov));
@@ -270,16 +284,23 @@ void AddDetectCommand(CLI::App& root) {
   AddLogOptions(*app, flags->log);
   AddGravityOptions(*app, flags->gravity);
   AddCalibrateOptions(*app, flags->calibrate);
+  app->add_flag(
+      "-v,--verbose",
+      flags->verbose,
+      "Also print the detection's levels, the table of positions, the turns and "
+      "the coverage of the sphere in detail");
   app->footer(
       "Examples:\n"
       "  mpcal detect session.csv\n"
+      "  mpcal detect -v session.csv   (every position and turn, the coverage)\n"
       "  mpcal detect xsens_acc.mat --units counts --json positions.json\n"
       "  mpcal detect xsens_acc.mat --gyro-log xsens_gyro.mat --units counts "
       "--gyro-units counts\n"
       "  mpcal detect poses.csv --columns t=n_samples --time-unit index --rate 102.4 "
       "--model bias-scale-6\n"
       "Exit status: 0 when the session is good enough for the model, 1 otherwise (the "
-      "last line says what to record next).");
+      "last line says what to record next). The verdict is coloured on a terminal; "
+      "set NO_COLOR=1 for plain text.");
   app->callback([flags] { Run(*flags); });
 }
 

@@ -33,7 +33,8 @@ std::string Row(const std::string& label,
 
 std::string FormatGyroTable(const GyroCalibration& g,
                             const GyroCalibration* extra,
-                            const std::string& extra_title) {
+                            const std::string& extra_title,
+                            bool details) {
   const bool has_std = g.m_covariance.has_value();
   const Eigen::Matrix3d s = g.MStd();
   std::string out = fmt::format("{:<22} {:>12} {:>10}", "gyroscope", "estimate", "±1σ");
@@ -67,7 +68,7 @@ std::string FormatGyroTable(const GyroCalibration& g,
                extra ? ext(extra->bias_radps[i] * kDegPerRad) : std::nullopt,
                "deg/s");
   }
-  if (!g.position_bias.empty()) {
+  if (details && !g.position_bias.empty()) {
     out += fmt::format(
         "bias measured at {} positions; its change over the session (max - min) x, y, z "
         "= "
@@ -94,7 +95,7 @@ std::string FormatGyroTable(const GyroCalibration& g,
         gs(2, 1),
         gs(2, 2));
   }
-  if (g.input_units == GyroUnits::kCounts) {
+  if (details && g.input_units == GyroUnits::kCounts) {
     out += fmt::format(
         "gyroscope readings in counts, scaled by the nominal {:.6g} rad/s per count "
         "(bias x, "

@@ -16,10 +16,13 @@
 
 namespace mpcal::cli {
 
-/// An optional column beside the estimate (the truth, say), as a calibration.
+/// An optional column beside the estimate (the truth, say), as a calibration;
+/// with `details`, the bias's change over the session and the nominal scale
+/// of raw counts under it.
 std::string FormatGyroTable(const GyroCalibration& gyro,
                             const GyroCalibration* extra = nullptr,
-                            const std::string& extra_title = "");
+                            const std::string& extra_title = "",
+                            bool details = true);
 
 /// Turns, convergence and the RMS tilt before/after, a few lines.
 std::string FormatGyroSummary(const GyroResult& result);

@@ -17,6 +17,7 @@
 #include <CLI/CLI.hpp>
 
 #include "calibration_table.h"
+#include "colour.h"
 #include "command.h"
 #include "explain.h"
 #include "mpcal/error.h"
@@ -42,7 +43,10 @@ void PrintError(const std::string& message) {
     if (c == '\n' || c == '\r') c = ' ';
   }
   std::fflush(stdout);
-  fmt::print(stderr, "mpcal: error: {}\n", line);
+  fmt::print(stderr,
+             "{} {}\n",
+             mpcal::cli::Paint(stderr, "mpcal: error:", mpcal::cli::Tint::kDoNotUse),
+             line);
 }
 
 // A standard descriptor that was closed (`>&-`) would be taken by the next

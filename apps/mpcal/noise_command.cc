@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "cli_options.h"
+#include "colour.h"
 #include "command.h"
 #include "explain.h"
 #include "explain_detect.h"
@@ -45,6 +46,7 @@ struct NoiseFlags {
   // Given on the command line (else a calibration's units are taken).
   bool units_given = false;
   bool gyro_units_given = false;
+  bool verbose = false;
 };
 
 // "1 sample", "2 samples".
@@ -151,6 +153,48 @@ void PrintFindings(const SensorNoise& s, bool gyro, const NoiseResult& r) {
           fmt::join(masked, ", "));
     }
   }
+}
+
+// One line per sensor: good when every term is measured or masked (a
+// longer record would not show it), look at when a term is not seen yet (a
+// longer record would show it), do not use when not even the white noise
+// shows: the record is not still noise.
+void PrintSensorVerdict(const SensorNoise& s, bool gyro, const NoiseResult& r) {
+  std::vector<std::string> not_seen;
+  bool white_missing = false;
+  std::optional<double> needed;
+  for (const NoiseTerm t :
+       {NoiseTerm::kWhiteNoise, NoiseTerm::kBiasInstability, NoiseTerm::kRandomWalk}) {
+    std::vector<std::string> axes;
+    for (int i = 0; i < 3; ++i) {
+      if (s.axes[i].term(t).status == TermStatus::kNotSeen) {
+        axes.emplace_back(1, static_cast<char>('x' + i));
+      }
+    }
+    if (axes.empty()) continue;
+    if (t == NoiseTerm::kWhiteNoise) white_missing = true;
+    not_seen.push_back(
+        fmt::format("{} on {}", TermLabel(t, gyro), fmt::join(axes, ", ")));
+    if (const auto n = s.record_needed_s[static_cast<int>(t)]) {
+      needed = std::max(needed.value_or(0.0), *n);
+    }
+  }
+  const Verdict verdict = white_missing      ? Verdict::kDoNotUse
+                          : not_seen.empty() ? Verdict::kGood
+                                             : Verdict::kLookAt;
+  std::string why =
+      not_seen.empty()
+          ? std::string("every term measured or bounded as far as any record shows it")
+          : fmt::format("not measured in this {} record: {}",
+                        FormatRecordLength(r.record_s),
+                        fmt::join(not_seen, "; "));
+  if (needed)
+    why += fmt::format("; record at least {} to see them (if as large as their bounds)",
+                       FormatRecordLength(*needed));
+  fmt::print("{:<14} {} {}\n",
+             gyro ? "gyroscope" : "accelerometer",
+             PaintVerdict(stdout, verdict, 11),
+             why);
 }
 
 // What was read and which part of it was analysed.
@@ -318,8 +362,9 @@ void WriteFiles(const NoiseFlags& f, const NoiseResult& r) {
         std::pair{"gyroscope_noise_density", k->gyro_noise_density}}) {
     if (!v.upper_bound) continue;
     fmt::print(stderr,
-               "mpcal: warning: {}: {} was not measured; the file has its upper bound "
+               "{} {}: {} was not measured; the file has its upper bound "
                "{:.4g} (labelled in a comment){}\n",
+               Paint(stderr, "mpcal: warning:", Tint::kLookAt),
                f.kalibr,
                name,
                v.value,
@@ -388,21 +433,29 @@ void Run(NoiseFlags& f) {
         Count(r.gaps, "gap"));
   }
   const std::vector<AllanPoint>& c = r.accel_mps2.axes[0].curve;
-  fmt::print(
-      "Allan deviation: overlapping, {} cluster times per axis from {:.3g} s to {:.4g} s "
-      "(a quarter of the record), {} per octave; intervals {:.0f} %\n",
-      c.size(),
-      c.front().tau_s,
-      c.back().tau_s,
-      f.noise.allan.points_per_octave,
-      100.0 * f.noise.allan.confidence);
+  if (f.verbose) {
+    fmt::print(
+        "Allan deviation: overlapping, {} cluster times per axis from {:.3g} s to {:.4g} "
+        "s "
+        "(a quarter of the record), {} per octave; intervals {:.0f} %\n",
+        c.size(),
+        c.front().tau_s,
+        c.back().tau_s,
+        f.noise.allan.points_per_octave,
+        100.0 * f.noise.allan.confidence);
+  }
   PrintSensor(r.accel_mps2, false);
   if (r.gyro_radps) PrintSensor(*r.gyro_radps, true);
   fmt::print(
       "\nvalue [interval]; '< bound (not seen)': not measured, the largest value the "
       "record allows. Densities are continuous-time: per sample σ = N·√rate.\n");
-  PrintFindings(r.accel_mps2, false, r);
-  if (r.gyro_radps) PrintFindings(*r.gyro_radps, true, r);
+  fmt::print("\n");
+  PrintSensorVerdict(r.accel_mps2, false, r);
+  if (r.gyro_radps) PrintSensorVerdict(*r.gyro_radps, true, r);
+  if (f.verbose) {
+    PrintFindings(r.accel_mps2, false, r);
+    if (r.gyro_radps) PrintFindings(*r.gyro_radps, true, r);
+  }
 
   WriteFiles(f, r);
 }
@@ -440,6 +493,10 @@ void AddNoiseCommand(CLI::App& root) {
       f->whole,
       "Analyse every sample without detecting motion (default: the whole record "
       "when it is still throughout, else its longest still part)");
+  app->add_flag("-v,--verbose",
+                f->verbose,
+                "Also print how the Allan deviation was made and, per term not measured, "
+                "why and how long a record would show it");
   app->add_option("--points-per-octave",
                   f->noise.allan.points_per_octave,
                   "Cluster times per factor of two")
@@ -465,7 +522,9 @@ void AddNoiseCommand(CLI::App& root) {
       "  mpcal noise still.csv --json noise.json --kalibr imu.yaml\n"
       "  mpcal noise imu.csv --columns t=0,ax=1,ay=2,az=3,gx=4,gy=5,gz=6 --units g\n"
       "  mpcal noise raw.csv --units counts --gyro-units counts --calib imu.json\n"
-      "  mpcal report --noise noise.json -o report.html");
+      "  mpcal report --noise noise.json -o report.html\n"
+      "A line per sensor says good, look at (a term not measured: record longer) or "
+      "do not use, coloured on a terminal; set NO_COLOR=1 for plain text.");
   app->callback([f, app] {
     f->units_given = app->count(std::string(FlagName(Option::kLogUnits))) > 0;
     f->gyro_units_given = app->count(std::string(FlagName(Option::kLogGyroUnits))) > 0;

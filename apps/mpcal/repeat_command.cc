@@ -18,6 +18,7 @@
 
 #include "calibration_table.h"
 #include "cli_options.h"
+#include "colour.h"
 #include "command.h"
 #include "explain_repeat.h"
 #include "gyro_table.h"
@@ -41,6 +42,7 @@ struct RepeatFlags {
   GravityFlags gravity;
   CalibrateOptions calibrate;
   RepeatabilityOptions repeat;
+  bool verbose = false;
 };
 
 // A calibration file is JSON (an object); a log never starts with '{'.
@@ -158,11 +160,38 @@ Calibration CalibrateSession(const std::string& path,
                     result.solve.message,
                     name));
   }
-  fmt::print("  {}: calibrated, {} positions, residual RMS {:.2g} m/s2\n",
-             name,
-             result.positions.size(),
-             result.solve.residual_rms_after_mps2);
+  if (f.verbose) {
+    fmt::print("  {}: calibrated, {} positions, residual RMS {:.2g} m/s2\n",
+               name,
+               result.positions.size(),
+               result.solve.residual_rms_after_mps2);
+  }
   return result.calibration;
+}
+
+// Whether one calibration serves every session, from each parameter's test
+// between the sessions: good when none changed beyond its 1σ, look at when
+// only the bias did (as it does at each power-up) or nothing could be
+// tested, do not use when a scale-factor error or non-orthogonality did.
+void PrintOneCalibrationVerdict(const RepeatabilityResult& result) {
+  bool bias_changed = false, other_changed = false, tested = false;
+  for (int p = 0; p < kNumModelParameters; ++p) {
+    const auto& changed = result.parameters[static_cast<std::size_t>(p)].changed;
+    if (!changed) continue;
+    tested = true;
+    if (*changed) (p < 3 ? bias_changed : other_changed) = true;
+  }
+  const Verdict verdict = other_changed             ? Verdict::kDoNotUse
+                          : bias_changed || !tested ? Verdict::kLookAt
+                                                    : Verdict::kGood;
+  const char* why =
+      other_changed  ? "a scale-factor error or non-orthogonality changed between the "
+                       "sessions: one calibration does not serve them all"
+      : bias_changed ? "one calibration serves the sessions but for the bias, which "
+                       "changes at each power-up"
+      : tested       ? "one calibration serves every session"
+                     : "no 1σ to judge the sessions by";
+  fmt::print("verdict: {}: {}\n", PaintVerdict(stdout, verdict), why);
 }
 
 void Run(RepeatFlags& f) {
@@ -191,14 +220,16 @@ void Run(RepeatFlags& f) {
   }
 
   std::vector<Calibration> trials;
-  fmt::print("{} sessions:\n", f.inputs.size());
+  if (f.verbose) fmt::print("{} sessions:\n", f.inputs.size());
   for (const std::string& path : f.inputs) {
     const SpooledInput input(path);
     try {
       if (IsCalibrationFile(input.readable())) {
         trials.push_back(ReadCalibrationFile(input.readable()));
-        fmt::print(
-            "  {}: calibration file{}\n", path, trials.back().std ? "" : " (no 1σ)");
+        if (f.verbose) {
+          fmt::print(
+              "  {}: calibration file{}\n", path, trials.back().std ? "" : " (no 1σ)");
+        }
       } else {
         trials.push_back(CalibrateSession(input.readable(), path, f));
       }
@@ -206,7 +237,7 @@ void Run(RepeatFlags& f) {
       throw Error(e.kind(), input.Restore(e.what()), e.advice());
     }
   }
-  fmt::print("\n");
+  if (f.verbose) fmt::print("\n");
 
   const RepeatabilityResult result = [&] {
     try {
@@ -216,6 +247,7 @@ void Run(RepeatFlags& f) {
     }
   }();
   fmt::print("{}\n{}", FormatRepeatabilityTable(result), RepeatabilityVerdict(result));
+  PrintOneCalibrationVerdict(result);
   fmt::print("{}", FormatGyroRepeatTable(trials, f.inputs));  // IMU trials (gyro_table.h)
   for (const std::string& note : result.notes) fmt::print("note: {}\n", note);
   if (!f.json.empty()) {
@@ -260,11 +292,17 @@ void AddRepeatCommand(CLI::App& root) {
   AddLogOptions(*app, flags->log);
   AddGravityOptions(*app, flags->gravity);
   AddCalibrateOptions(*app, flags->calibrate);
+  app->add_flag("-v,--verbose",
+                flags->verbose,
+                "Also list the sessions as they are read, each log's positions and "
+                "residual RMS");
   app->footer(
       "Examples:\n"
       "  mpcal repeat monday.csv tuesday.csv wednesday.csv --json repeat.json\n"
       "  mpcal repeat trial1.json trial2.json trial3.json --csv repeat.csv\n"
-      "  mpcal repeat s1.csv s2.csv --units g --latitude -25.45 --height 920");
+      "  mpcal repeat s1.csv s2.csv --units g --latitude -25.45 --height 920\n"
+      "The last line says whether one calibration serves every session: good, look at "
+      "or do not use, coloured on a terminal; set NO_COLOR=1 for plain text.");
   app->callback([flags] { Run(*flags); });
 }
 

@@ -251,9 +251,9 @@ shell_case(bad_pipe_repeat_urandom 1 "not a text log"
 # repeat reads each input once: pipes and process substitutions work, for
 # calibration files and logs alike ("too few columns").
 shell_case(repeat_process_substitution_json 0 "/dev/fd/[0-9]+: calibration file"
-  "\"$0\" repeat <(cat '${MPCAL_TEST_DATA}/paper/colibri_trial1.json') <(cat '${MPCAL_TEST_DATA}/paper/colibri_trial2.json')")
+  "\"$0\" repeat -v <(cat '${MPCAL_TEST_DATA}/paper/colibri_trial1.json') <(cat '${MPCAL_TEST_DATA}/paper/colibri_trial2.json')")
 shell_case(repeat_process_substitution_log 0 "/dev/fd/[0-9]+: calibrated, [0-9]+ positions"
-  "\"$0\" repeat <(cat '${_session}') '${GOOD_CALIB}'")
+  "\"$0\" repeat -v <(cat '${_session}') '${GOOD_CALIB}'")
 
 # Warnings are held back when the command fails: one line (all
 # timestamps zero printed two or three warnings before the error).

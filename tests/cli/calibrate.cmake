@@ -7,15 +7,15 @@ mpcal_cli_test(calibrate_help EXIT 0 MATCH "mpcal calibrate session.csv -o calib
   ARGS calibrate --help)
 mpcal_cli_test(calibrate_xsens_counts EXIT 0
   MATCH "^static positions: 38 used"
-  ARGS calibrate ${_xsens} --units counts --gravity 9.81744 -o calib.json)
+  ARGS calibrate -v ${_xsens} --units counts --gravity 9.81744 -o calib.json)
 # The split-half check on the real recording: both splits possible, the
 # halves consistent, and stored in the file.
 mpcal_cli_test(calibrate_xsens_split_half EXIT 0
   MATCH "split-half \\(by time, 19 \\+ 19 positions\\): RMS z [0-9.]+ \\(honest 1σ: 1 ± 0.24\\); consistent"
-  ARGS calibrate ${_xsens} --units counts --gravity 9.81744 -o calib.json)
+  ARGS calibrate -v ${_xsens} --units counts --gravity 9.81744 -o calib.json)
 mpcal_cli_test(calibrate_ferraris_split_half_not_possible EXIT 0
   MATCH "split-half \\(by time, 5 \\+ 5 positions\\): not possible"
-  ARGS calibrate ${_ferraris} --rate 102.4 --gyro-units dps --model bias-scale-6 -o calib.json)
+  ARGS calibrate -v ${_ferraris} --rate 102.4 --gyro-units dps --model bias-scale-6 -o calib.json)
 # A bumped stretch: 4 mg on x from 246 s to 400 s of a 40-position session.
 # The halves by time disagree; calibrate says so, at the split's share of the
 # check's 1 %, widens every 1σ, and stores the widening in the file.
@@ -23,19 +23,43 @@ add_test(NAME cli.calibrate_bumped_stretch_widens
   COMMAND sh -c "set -e; rm -rf bumped && mkdir bumped && cd bumped
     \"$0\" simulate static --preset mti-g --seed 3 --positions 40 -o s.csv
     awk -F, 'NR == 1 { print; next } { if ($1 > 246 && $1 < 400) $2 += 0.004; print $1 \",\" $2 \",\" $3 \",\" $4 }' s.csv > bumped.csv
-    \"$0\" calibrate bumped.csv -o c.json > out.txt 2>&1
+    \"$0\" calibrate -v bumped.csv -o c.json > out.txt 2>&1
     grep -q 'split-half (by time, 21 + 20 positions): RMS z [0-9.]* (honest 1σ: 1 ± 0.24); the halves DISAGREE beyond chance (chi-square p = .* < 0.005, the check.s 0.01 shared by 2 splits)' out.txt
     grep -q '^every 1σ above is widened by [2-9]' out.txt
     grep -q 'every 1σ is widened by' out.txt
-    grep -q '\"widening\": [2-9]' c.json"
+    grep -q '\"widening\": [2-9]' c.json
+    \"$0\" calibrate bumped.csv > default.txt 2>&1
+    grep -q '^  split-half  *do not use  *the halves of the session disagree (p = .* < 0.005)' default.txt"
   $<TARGET_FILE:mpcal_cli>)
 set_tests_properties(cli.calibrate_bumped_stretch_widens PROPERTIES LABELS cli)
+# The default output: the table, one verdict line per check, the file; the
+# diagnostics behind the checks only under -v.
+add_test(NAME cli.calibrate_xsens_default_verdicts
+  COMMAND sh -c "set -e; \"$0\" calibrate \"$1\" --units counts --gravity 9.81744 > out.txt
+    test $(wc -l < out.txt) -le 25
+    grep -q '^  fit  *good  *residuals as the sensor noise explains (variance factor 0\\.[0-9]*)' out.txt
+    grep -q '^  positions  *good  *38 positions determine every parameter' out.txt
+    grep -q '^  bias drift  *good  *the bias is constant over the session (p = 0\\.' out.txt
+    grep -q '^  split-half  *good  *the two halves of the session agree' out.txt
+    grep -q '^  units  *good  *raw counts, 1 g = 40[0-9][0-9]\\.[0-9]* counts' out.txt
+    ! grep -q 'split-half (by time' out.txt
+    ! grep -q 'variance factor .* (1 = residuals' out.txt"
+  $<TARGET_FILE:mpcal_cli> ${_xsens})
+set_tests_properties(cli.calibrate_xsens_default_verdicts PROPERTIES LABELS cli
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+mpcal_cli_test(calibrate_xsens_verbose_split_half_z EXIT 0
+  MATCH "^  z: bias x [+-][0-9.]+, bias y [+-][0-9.]+, .*θzy [+-][0-9.]+$"
+  ARGS calibrate -v ${_xsens} --units counts --gravity 9.81744)
+add_test(NAME cli.calibrate_colour_on_terminal_only
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/colour.sh $<TARGET_FILE:mpcal_cli> ${_xsens}
+          --units counts --gravity 9.81744)
+set_tests_properties(cli.calibrate_colour_on_terminal_only PROPERTIES LABELS cli)
 mpcal_cli_test(calibrate_xsens_read_as_mps2 EXIT 1
   MATCH "look like raw ADC counts: add --units counts" ABSENT calib.json
   ARGS calibrate ${_xsens} --gravity 9.81744 -o calib.json)
 mpcal_cli_test(calibrate_ferraris_six_parameters EXIT 0
   MATCH "^fit: converged after"
-  ARGS calibrate ${_ferraris} --rate 102.4 --gyro-units dps --model bias-scale-6 -o calib.json)
+  ARGS calibrate -v ${_ferraris} --rate 102.4 --gyro-units dps --model bias-scale-6 -o calib.json)
 mpcal_cli_test(calibrate_ferraris_nine_parameters_refused EXIT 1
   MATCH "do not determine theta.*--model bias-scale-6" ABSENT calib.json
   ARGS calibrate ${_ferraris} --rate 102.4 --gyro-units dps -o calib.json)
@@ -50,7 +74,7 @@ mpcal_cli_test(calibrate_unknown_model EXIT 2
   MATCH "--model: 'twelve' is not one of: shin-el-sheimy-9, bias-scale-6" ABSENT calib.json
   ARGS calibrate ${_xsens} --model twelve -o calib.json)
 mpcal_cli_test(calibrate_xsens_robust_cauchy EXIT 0 MATCH "^fit: converged after"
-  ARGS calibrate ${_xsens} --units counts --gravity 9.81744 --robust cauchy -o calib.json)
+  ARGS calibrate -v ${_xsens} --units counts --gravity 9.81744 --robust cauchy -o calib.json)
 mpcal_cli_test(calibrate_unknown_robust_loss EXIT 2
   MATCH "--robust: 'tukey' is not one of: none, huber, cauchy" ABSENT calib.json
   ARGS calibrate ${_xsens} --units counts --robust tukey -o calib.json)

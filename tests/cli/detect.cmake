@@ -7,10 +7,23 @@ mpcal_cli_test(detect_xsens_counts EXIT 0
   MATCH "^good enough to calibrate with --model shin-el-sheimy-9"
   ARGS detect ${_xsens} --units counts)
 mpcal_cli_test(detect_xsens_positions EXIT 0 MATCH "^  38 static positions; 0 still"
-  ARGS detect ${_xsens} --units counts)
+  ARGS detect -v ${_xsens} --units counts)
 mpcal_cli_test(detect_xsens_table EXIT 0
   MATCH " 1 +0\\.81 +51\\.66 +50\\.85 +33102\\.2 +33330\\.5 +36433\\.8"
-  ARGS detect ${_xsens} --units counts)
+  ARGS detect -v ${_xsens} --units counts)
+# By default: the positions and turns in one line, the missing directions,
+# the verdict and what to record next; the table of positions only under -v.
+add_test(NAME cli.detect_xsens_default_short
+  COMMAND sh -c "set -e; \"$0\" detect \"$1\" --gyro-log \"$2\" --units counts --gyro-units counts > out.txt
+    grep -q '^38 static positions, 13 of 26 cube directions (missing: -x+y edge, .*), 37 turns$' out.txt
+    grep -q '^verdict: usable with warnings$' out.txt
+    grep -q '^  next: record 5 more positions' out.txt
+    ! grep -q '^  1-2 ' out.txt
+    ! grep -q 'quiet level' out.txt
+    test $(wc -l < out.txt) -le 10"
+  $<TARGET_FILE:mpcal_cli> ${_xsens} ${MPCAL_REAL_DATA}/xsens-multiposition/xsens_gyro.mat)
+set_tests_properties(cli.detect_xsens_default_short PROPERTIES LABELS cli
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 mpcal_cli_test(detect_ferraris_six_parameters EXIT 0
   MATCH "verdict: good"
   ARGS detect ${_ferraris} --rate 102.4 --gyro-units dps --model bias-scale-6)
@@ -63,12 +76,12 @@ mpcal_cli_test(detect_gyro_units_unknown EXIT 2
 set(_xsens_gyro ${MPCAL_REAL_DATA}/xsens-multiposition/xsens_gyro.mat)
 mpcal_cli_test(detect_xsens_turns EXIT 0
   MATCH "^  1-2 +51\\.76 +3\\.14 +89\\.[0-9] +-0\\.0[0-9]+ +1\\.000 +0\\.0[0-9]+ +90\\.6"
-  ARGS detect ${_xsens} --gyro-log ${_xsens_gyro} --units counts --gyro-units counts)
+  ARGS detect -v ${_xsens} --gyro-log ${_xsens_gyro} --units counts --gyro-units counts)
 mpcal_cli_test(detect_xsens_turn_count EXIT 0 MATCH "^37-38 "
-  ARGS detect ${_xsens} --gyro-log ${_xsens_gyro} --units counts --gyro-units counts)
+  ARGS detect -v ${_xsens} --gyro-log ${_xsens_gyro} --units counts --gyro-units counts)
 mpcal_cli_test(detect_xsens_turn_scale EXIT 0
   MATCH "nominal scale 0\\.000208[0-9] rad/s per count, fitted to the tilts"
-  ARGS detect ${_xsens} --gyro-log ${_xsens_gyro} --units counts --gyro-units counts)
+  ARGS detect -v ${_xsens} --gyro-log ${_xsens_gyro} --units counts --gyro-units counts)
 # The turns in the JSON report too: 37 of them, the first a quarter turn.
 add_test(NAME cli.detect_xsens_turns_json
   COMMAND ${MPCAL_CLI_EXPECT} 0 "^37 89\\.[0-9]"

@@ -6,7 +6,7 @@ set(_xsens_gyro ${MPCAL_REAL_DATA}/xsens-multiposition/xsens_gyro.mat)
 
 mpcal_cli_test(calibrate_xsens_imu EXIT 0
   MATCH "gyroscope: 37 turns between the positions; converged after [0-9]+ iterations; gravity carried over each turn vs measured after it, tilt RMS [0-9.]+ deg before \\(nominal scale, bias at every position\\), 0\\.(0|1|2|30|31|32)[0-9]* deg after"
-  ARGS calibrate ${_xsens_acc} --gyro-log ${_xsens_gyro} --units counts --gyro-units counts
+  ARGS calibrate -v ${_xsens_acc} --gyro-log ${_xsens_gyro} --units counts --gyro-units counts
        --gravity 9.81744 -o imu.json)
 mpcal_cli_test(calibrate_xsens_imu_writes_imu_file EXIT 0 MATCH "wrote imu.json"
   ARGS calibrate ${_xsens_acc} --gyro-log ${_xsens_gyro} --units counts --gyro-units counts
@@ -160,7 +160,7 @@ foreach(_case "t,gx,gy,gz" "time,wx,wy,wz" "t,gyr_x,gyr_y,gyr_z")
   add_test(NAME cli.calibrate_gyro_log_header_${_tag}
     COMMAND ${MPCAL_CLI_EXPECT} 0 "gyroscope: 37 turns between the positions; converged"
             --workdir ${CMAKE_CURRENT_BINARY_DIR}/calibrate_gyro_log_header_${_tag}
-            -- sh -c "{ echo '${_case}'; awk '{ print $1 \",\" $2 \",\" $3 \",\" $4 }' '${_xsens_gyro}'; } > g.csv && exec \"$0\" calibrate '${_xsens_acc}' --gyro-log g.csv --units counts --gyro-units counts --gravity 9.81744"
+            -- sh -c "{ echo '${_case}'; awk '{ print $1 \",\" $2 \",\" $3 \",\" $4 }' '${_xsens_gyro}'; } > g.csv && exec \"$0\" calibrate -v '${_xsens_acc}' --gyro-log g.csv --units counts --gyro-units counts --gravity 9.81744"
             $<TARGET_FILE:mpcal_cli>)
   set_tests_properties(cli.calibrate_gyro_log_header_${_tag} PROPERTIES LABELS cli)
 endforeach()
@@ -173,7 +173,7 @@ set_tests_properties(cli.calibrate_gyro_log_header_unknown_names PROPERTIES LABE
 add_test(NAME cli.calibrate_gyro_columns_map_the_gyro_log
   COMMAND ${MPCAL_CLI_EXPECT} 0 "gyroscope: 37 turns between the positions; converged"
           --workdir ${CMAKE_CURRENT_BINARY_DIR}/calibrate_gyro_columns_map_the_gyro_log
-          -- sh -c "{ echo 'clock,a,b,c'; awk '{ print $1 \",\" $2 \",\" $3 \",\" $4 }' '${_xsens_gyro}'; } > g.csv && exec \"$0\" calibrate '${_xsens_acc}' --gyro-log g.csv --gyro-columns t=clock,gx=a,gy=b,gz=c --units counts --gyro-units counts --gravity 9.81744"
+          -- sh -c "{ echo 'clock,a,b,c'; awk '{ print $1 \",\" $2 \",\" $3 \",\" $4 }' '${_xsens_gyro}'; } > g.csv && exec \"$0\" calibrate -v '${_xsens_acc}' --gyro-log g.csv --gyro-columns t=clock,gx=a,gy=b,gz=c --units counts --gyro-units counts --gravity 9.81744"
           $<TARGET_FILE:mpcal_cli>)
 set_tests_properties(cli.calibrate_gyro_columns_map_the_gyro_log PROPERTIES LABELS cli)
 mpcal_cli_test(calibrate_gyro_columns_take_gyroscope_keys EXIT 1

@@ -7,22 +7,22 @@ mpcal_cli_test(logger_arduino_serial_boot_text EXIT 0
   MATCH "skipped 4 lines before the header \\(serial boot text or a title\\); the header starts on line 5"
   ARGS calibrate ${_lg}/arduino_mpu6050_serial.txt --units counts -o calib.json)
 mpcal_cli_test(logger_arduino_calibrates EXIT 0 MATCH "static positions: 18 used"
-  ARGS calibrate ${_lg}/arduino_mpu6050_serial.txt --units counts -o calib.json)
+  ARGS calibrate -v ${_lg}/arduino_mpu6050_serial.txt --units counts -o calib.json)
 # A phone app's export, two locales; `Time (s)` names its unit.
 mpcal_cli_test(logger_phone_export_en EXIT 0 MATCH "static positions: 14 used"
-  ARGS calibrate ${_lg}/phone_export_en.csv -o calib.json)
+  ARGS calibrate -v ${_lg}/phone_export_en.csv -o calib.json)
 mpcal_cli_test(logger_phone_export_de EXIT 0 MATCH "static positions: 14 used"
-  ARGS calibrate ${_lg}/phone_export_de.csv -o calib.json)
+  ARGS calibrate -v ${_lg}/phone_export_de.csv -o calib.json)
 # ADXL345 with a sample counter: a clear error without the rate, a
 # calibration with it.
 mpcal_cli_test(logger_adxl345_index_needs_rate EXIT 1
   MATCH "column 'column 0' steps by exactly 1 on every row: it is a sample index, not a time"
   ABSENT calib.json ARGS calibrate ${_lg}/adxl345_sample_index.txt --units g -o calib.json)
 mpcal_cli_test(logger_adxl345_index_with_rate EXIT 0 MATCH "static positions: 18 used"
-  ARGS calibrate ${_lg}/adxl345_sample_index.txt --units g --rate 100 -o calib.json)
+  ARGS calibrate -v ${_lg}/adxl345_sample_index.txt --units g --rate 100 -o calib.json)
 # 12 positions in one hemisphere.
 mpcal_cli_test(logger_one_hemisphere EXIT 0 MATCH "static positions: 12 used"
-  ARGS calibrate ${_lg}/one_hemisphere_12.csv --units g -o calib.json)
+  ARGS calibrate -v ${_lg}/one_hemisphere_12.csv --units g -o calib.json)
 # The calibration file records how the log was read: apply reads the same
 # logger's logs without the flags repeated (here the rate of the index).
 add_test(NAME cli.logger_apply_uses_recorded_layout

@@ -16,7 +16,18 @@ mpcal_cli_test(noise_gyroscope_datasheet_units EXIT 0 MATCH "°/√h"
 # Three minutes cannot show the random walk: no number, the bound, and how long.
 mpcal_cli_test(noise_short_record_advice EXIT 0
   MATCH "random walk K on x, y, z: not measured .* To measure it, record at least"
-  ARGS noise ${_still})
+  ARGS noise -v ${_still})
+# By default a verdict line per sensor: the terms a longer record would show
+# and how long; why each was not seen only under -v.
+add_test(NAME cli.noise_short_record_verdicts
+  COMMAND sh -c "set -e; \"$0\" noise \"$1\" > out.txt
+    grep -q '^accelerometer  look at  *not measured in this 3 min record: .*accel. random walk K on x, y, z; record at least [0-9]* min' out.txt
+    grep -q '^gyroscope  *look at  *not measured in this 3 min record: .*rate random walk K on x, y, z' out.txt
+    ! grep -q 'no stretch of the curve where it dominates' out.txt
+    ! grep -q '^Allan deviation: overlapping' out.txt"
+  $<TARGET_FILE:mpcal_cli> ${_still})
+set_tests_properties(cli.noise_short_record_verdicts PROPERTIES LABELS cli
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 mpcal_cli_test(noise_files EXIT 0
   MATCH "wrote imu\\.yaml \\(Kalibr IMU model: the largest axis of each sensor\\)"
   ARGS noise ${_still} --json n.json --kalibr imu.yaml)
@@ -98,7 +109,7 @@ mpcal_cli_test(noise_ten_minutes_no_random_walk_number EXIT 0
   ARGS noise ${_ten})
 mpcal_cli_test(noise_ten_minutes_how_long EXIT 0
   MATCH "gyroscope rate random walk K on x, y, z: not measured — .* this 10 min record; .* To measure it, record at least [0-9.]+ h \\(if it is as large as the bound; [0-9.]+ h if half of it\\)"
-  ARGS noise ${_ten})
+  ARGS noise -v ${_ten})
 set_tests_properties(cli.noise_ten_minutes_no_random_walk_number cli.noise_ten_minutes_how_long
   PROPERTIES FIXTURES_REQUIRED noise_ten_minutes)
 add_test(NAME cli.noise_one_record_length

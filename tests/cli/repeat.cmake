@@ -50,3 +50,10 @@ mpcal_cli_test(repeat.no_arguments EXIT 2 MATCH "SESSION_OR_CALIB" ARGS repeat)
 mpcal_cli_test(repeat.json_and_csv_same_file EXIT 1
   MATCH "--json and --csv both name 'table': one would overwrite the other" ABSENT table
   ARGS repeat ${_colibri} --json table --csv ./table)
+# The last line: whether one calibration serves every session.
+mpcal_cli_test(repeat_verdict_one_calibration_good EXIT 0
+  MATCH "^verdict: good: one calibration serves every session$"
+  ARGS repeat ${MPCAL_TEST_DATA}/imu_trial_1.json ${MPCAL_TEST_DATA}/imu_trial_2.json)
+mpcal_cli_test(repeat_verdict_no_sigma_look_at EXIT 0
+  MATCH "^verdict: look at: no 1σ to judge the sessions by$"
+  ARGS repeat ${_colibri})
