@@ -7,7 +7,7 @@ set(_bags ${MPCAL_TEST_DATA}/bags)
 # identical. The files differ only in the input's name and in the columns
 # recorded for the CSV.
 add_test(NAME cli.calibrate_bag_equals_csv
-  COMMAND sh -c "set -e; rm -rf w && mkdir w && cd w
+  COMMAND sh -c "set -e; rm -rf bag_equals_csv && mkdir bag_equals_csv && cd bag_equals_csv
     \"$0\" simulate static --preset mti-g --gyro --rate 128 --seed 2 --digits 0 -o s.csv >/dev/null
     python3 '${_bags}/make_ros2_db3.py' --csv s.csv --out session --in-order
     \"$0\" calibrate s.csv -o csv.json >/dev/null

@@ -35,15 +35,15 @@ set_tests_properties(cli.calibrate_bumped_stretch_widens PROPERTIES LABELS cli)
 # The default output: the table, one verdict line per check, the file; the
 # diagnostics behind the checks only under -v.
 add_test(NAME cli.calibrate_xsens_default_verdicts
-  COMMAND sh -c "set -e; \"$0\" calibrate \"$1\" --units counts --gravity 9.81744 > out.txt
-    test $(wc -l < out.txt) -le 25
-    grep -q '^  fit  *good  *residuals as the sensor noise explains (variance factor 0\\.[0-9]*)' out.txt
-    grep -q '^  positions  *good  *38 positions determine every parameter' out.txt
-    grep -q '^  bias drift  *good  *the bias is constant over the session (p = 0\\.' out.txt
-    grep -q '^  split-half  *good  *the two halves of the session agree' out.txt
-    grep -q '^  units  *good  *raw counts, 1 g = 40[0-9][0-9]\\.[0-9]* counts' out.txt
-    ! grep -q 'split-half (by time' out.txt
-    ! grep -q 'variance factor .* (1 = residuals' out.txt"
+  COMMAND sh -c "set -e; \"$0\" calibrate \"$1\" --units counts --gravity 9.81744 > calibrate_xsens_default_verdicts.txt
+    test $(wc -l < calibrate_xsens_default_verdicts.txt) -le 25
+    grep -q '^  fit  *good  *residuals as the sensor noise explains (variance factor 0\\.[0-9]*)' calibrate_xsens_default_verdicts.txt
+    grep -q '^  positions  *good  *38 positions determine every parameter' calibrate_xsens_default_verdicts.txt
+    grep -q '^  bias drift  *good  *the bias is constant over the session (p = 0\\.' calibrate_xsens_default_verdicts.txt
+    grep -q '^  split-half  *good  *the two halves of the session agree' calibrate_xsens_default_verdicts.txt
+    grep -q '^  units  *good  *raw counts, 1 g = 40[0-9][0-9]\\.[0-9]* counts' calibrate_xsens_default_verdicts.txt
+    ! grep -q 'split-half (by time' calibrate_xsens_default_verdicts.txt
+    ! grep -q 'variance factor .* (1 = residuals' calibrate_xsens_default_verdicts.txt"
   $<TARGET_FILE:mpcal_cli> ${_xsens})
 set_tests_properties(cli.calibrate_xsens_default_verdicts PROPERTIES LABELS cli
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})

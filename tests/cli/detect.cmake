@@ -14,13 +14,13 @@ mpcal_cli_test(detect_xsens_table EXIT 0
 # By default: the positions and turns in one line, the missing directions,
 # the verdict and what to record next; the table of positions only under -v.
 add_test(NAME cli.detect_xsens_default_short
-  COMMAND sh -c "set -e; \"$0\" detect \"$1\" --gyro-log \"$2\" --units counts --gyro-units counts > out.txt
-    grep -q '^38 static positions, 13 of 26 cube directions (missing: -x+y edge, .*), 37 turns$' out.txt
-    grep -q '^verdict: usable with warnings$' out.txt
-    grep -q '^  next: record 5 more positions' out.txt
-    ! grep -q '^  1-2 ' out.txt
-    ! grep -q 'quiet level' out.txt
-    test $(wc -l < out.txt) -le 10"
+  COMMAND sh -c "set -e; \"$0\" detect \"$1\" --gyro-log \"$2\" --units counts --gyro-units counts > detect_xsens_default_short.txt
+    grep -q '^38 static positions, 13 of 26 cube directions (missing: -x+y edge, .*), 37 turns$' detect_xsens_default_short.txt
+    grep -q '^verdict: usable with warnings$' detect_xsens_default_short.txt
+    grep -q '^  next: record 5 more positions' detect_xsens_default_short.txt
+    ! grep -q '^  1-2 ' detect_xsens_default_short.txt
+    ! grep -q 'quiet level' detect_xsens_default_short.txt
+    test $(wc -l < detect_xsens_default_short.txt) -le 10"
   $<TARGET_FILE:mpcal_cli> ${_xsens} ${MPCAL_REAL_DATA}/xsens-multiposition/xsens_gyro.mat)
 set_tests_properties(cli.detect_xsens_default_short PROPERTIES LABELS cli
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})

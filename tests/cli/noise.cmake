@@ -20,11 +20,11 @@ mpcal_cli_test(noise_short_record_advice EXIT 0
 # By default a verdict line per sensor: the terms a longer record would show
 # and how long; why each was not seen only under -v.
 add_test(NAME cli.noise_short_record_verdicts
-  COMMAND sh -c "set -e; \"$0\" noise \"$1\" > out.txt
-    grep -q '^accelerometer  look at  *not measured in this 3 min record: .*accel. random walk K on x, y, z; record at least [0-9]* min' out.txt
-    grep -q '^gyroscope  *look at  *not measured in this 3 min record: .*rate random walk K on x, y, z' out.txt
-    ! grep -q 'no stretch of the curve where it dominates' out.txt
-    ! grep -q '^Allan deviation: overlapping' out.txt"
+  COMMAND sh -c "set -e; \"$0\" noise \"$1\" > noise_short_record_verdicts.txt
+    grep -q '^accelerometer  look at  *not measured in this 3 min record: .*accel. random walk K on x, y, z; record at least [0-9]* min' noise_short_record_verdicts.txt
+    grep -q '^gyroscope  *look at  *not measured in this 3 min record: .*rate random walk K on x, y, z' noise_short_record_verdicts.txt
+    ! grep -q 'no stretch of the curve where it dominates' noise_short_record_verdicts.txt
+    ! grep -q '^Allan deviation: overlapping' noise_short_record_verdicts.txt"
   $<TARGET_FILE:mpcal_cli> ${_still})
 set_tests_properties(cli.noise_short_record_verdicts PROPERTIES LABELS cli
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})

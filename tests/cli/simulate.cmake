@@ -40,10 +40,10 @@ add_test(NAME cli.simulate_static_files
     test \"$(wc -l < s.csv)\" -eq 3401
     grep -q '\"format\": \"mpcal.imu/1\"' t.json
     grep -q '\"units\": \"g\"' t.json
-    \"$0\" simulate static --preset mti-g --positions 2 --dwell 1 --units counts --trials 3 -o s.csv --truth t.json > out.txt
+    \"$0\" simulate static --preset mti-g --positions 2 --dwell 1 --units counts --trials 3 -o s.csv --truth t.json > simulate_static_files.txt
     test -s s_1.csv && test -s s_2.csv && test -s s_3.csv
     test -s t_1.json && test -s t_2.json && test -s t_3.json
-    grep -q 'trial 3: s_3.csv, t_3.json' out.txt
+    grep -q 'trial 3: s_3.csv, t_3.json' simulate_static_files.txt
     head -n2 s_1.csv | tail -n1 | grep -Eq '^0,[0-9]+,[0-9]+,[0-9]+$'"
     $<TARGET_FILE:mpcal_cli>
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
@@ -55,9 +55,9 @@ add_test(NAME cli.simulate_bias_drift_found
   COMMAND sh -c "set -e; rm -rf drift_files && mkdir drift_files && cd drift_files
     \"$0\" simulate static --preset mti-g --seed 5 --bias-drift 2e-5,-1e-5,3e-5 -o s.csv --truth t.json
     grep -q '\"bias_drift_mps2_per_s\"' t.json
-    \"$0\" calibrate s.csv -o c.json > out.txt 2>&1
-    grep -q '^bias drift x, y, z: ' out.txt
-    grep -Fq 'mg/min (p = ' out.txt
+    \"$0\" calibrate s.csv -o c.json > simulate_bias_drift_found.txt 2>&1
+    grep -q '^bias drift x, y, z: ' simulate_bias_drift_found.txt
+    grep -Fq 'mg/min (p = ' simulate_bias_drift_found.txt
     grep -q '\"bias_drift_mps2_per_s\"' c.json
     grep -q '\"bias_reference_time_s\"' c.json"
     $<TARGET_FILE:mpcal_cli>

@@ -1,5 +1,7 @@
 #include "mpcal/verdict.h"
 
+#include <vector>
+
 #include <gtest/gtest.h>
 
 namespace mpcal {
@@ -10,7 +12,7 @@ namespace {
 CalibrateResult GoodResult() {
   CalibrateResult r;
   r.solve.status = SolveStatus::kConverged;
-  r.solve.used.assign(20, true);
+  r.solve.used = std::vector<bool>(20, true);
   r.solve.variance_factor = 1.0;
   r.solve.bias_drift_p_value = 0.4;
   SplitHalfSummary split;
@@ -80,7 +82,9 @@ TEST(Verdict, UnconvergedFitAndUndeterminedGyroscopeSayDoNotUse) {
   r.solve.status = SolveStatus::kNoConvergence;
   GyroResult g;
   g.status = GyroStatus::kUndetermined;
-  g.findings.push_back(GyroFinding{GyroFindingKind::kTooFewTurns});
+  GyroFinding too_few;
+  too_few.kind = GyroFindingKind::kTooFewTurns;
+  g.findings.push_back(too_few);
   r.gyro = g;
   const auto checks = JudgeCalibration(r, CalibrateOptions{});
   EXPECT_EQ(Find(checks, CheckKind::kFit).verdict, Verdict::kDoNotUse);
