@@ -1,6 +1,8 @@
 #include "cli_options.h"
 
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -13,64 +15,50 @@
 namespace mpcal::cli {
 namespace {
 
-CLI::Validator NumberAtLeast(bool allow_zero) {
+// A number flag: a finite value for which `ok` holds, else "must be
+// `wanted`, got 'TEXT'" (CLI11's own checks print their range digit by digit).
+template <typename Ok>
+CLI::Validator FiniteNumberThat(Ok ok, std::string wanted, std::string type_name) {
   return CLI::Validator(
-      [allow_zero](std::string& text) -> std::string {
+      [ok, wanted](std::string& text) -> std::string {
         double v = 0.0;
-        if (CLI::detail::lexical_cast(text, v) && std::isfinite(v) &&
-            (v > 0.0 || (allow_zero && v == 0.0))) {
-          return "";
-        }
-        return fmt::format("must be a {} number, got '{}'",
-                           allow_zero ? "positive (or zero)" : "positive",
-                           text);
+        if (CLI::detail::lexical_cast(text, v) && std::isfinite(v) && ok(v)) return "";
+        return fmt::format("must be {}, got '{}'", wanted, text);
       },
-      allow_zero ? "NONNEGATIVE" : "POSITIVE");
+      std::move(type_name));
+}
+
+// A path flag: not empty, else `problem` (a shell variable never set is a
+// slip, not a request to read or write nothing).
+CLI::Validator NonEmpty(std::string problem, std::string type_name) {
+  return CLI::Validator(
+      [problem](const std::string& text) -> std::string {
+        return text.empty() ? problem : "";
+      },
+      std::move(type_name));
 }
 
 }  // namespace
 
-const CLI::Validator PositiveNumber = NumberAtLeast(false);
-const CLI::Validator NonNegativeNumber = NumberAtLeast(true);
+const CLI::Validator PositiveNumber =
+    FiniteNumberThat([](double v) { return v > 0.0; }, "a positive number", "POSITIVE");
+const CLI::Validator NonNegativeNumber = FiniteNumberThat(
+    [](double v) { return v >= 0.0; }, "a positive (or zero) number", "NONNEGATIVE");
 
 CLI::Validator NumberIn(double lo, double hi) {
-  return CLI::Validator(
-      [lo, hi](std::string& text) -> std::string {
-        double v = 0.0;
-        if (CLI::detail::lexical_cast(text, v) && v >= lo && v <= hi) return "";
-        return fmt::format("must be a number in [{}, {}], got '{}'", lo, hi, text);
-      },
-      fmt::format("FLOAT in [{} - {}]", lo, hi));
+  return FiniteNumberThat([lo, hi](double v) { return v >= lo && v <= hi; },
+                          fmt::format("a number in [{}, {}]", lo, hi),
+                          fmt::format("FLOAT in [{} - {}]", lo, hi));
 }
 
-const CLI::Validator FiniteNumber(
-    [](std::string& text) -> std::string {
-      double v = 0.0;
-      if (CLI::detail::lexical_cast(text, v) && std::isfinite(v)) return "";
-      return fmt::format("must be a finite number, got '{}'", text);
-    },
-    "FLOAT");
-const CLI::Validator OutputPath(
-    [](const std::string& text) -> std::string {
-      return text.empty()
-                 ? "the file name is empty; give a path, or '-' for standard output"
-                 : "";
-    },
-    "PATH");
-const CLI::Validator OutputDirectory(
-    [](const std::string& text) -> std::string {
-      return text.empty() ? "the directory name is empty; give a path, or '.' for the "
-                            "current directory"
-                          : "";
-    },
-    "DIR");
-const CLI::Validator InputPath(
-    [](const std::string& text) -> std::string {
-      return text.empty()
-                 ? "the file name is empty; give a path, or '-' for standard input"
-                 : "";
-    },
-    "PATH");
+const CLI::Validator FiniteNumber =
+    FiniteNumberThat([](double) { return true; }, "a finite number", "FLOAT");
+const CLI::Validator OutputPath =
+    NonEmpty("the file name is empty; give a path, or '-' for standard output", "PATH");
+const CLI::Validator OutputDirectory = NonEmpty(
+    "the directory name is empty; give a path, or '.' for the current directory", "DIR");
+const CLI::Validator InputPath =
+    NonEmpty("the file name is empty; give a path, or '-' for standard input", "PATH");
 
 void AddLogOptions(CLI::App& app, LogOptions& options, const CountsHelp& counts) {
   const std::vector<std::pair<std::string, AccelUnits>> units{
