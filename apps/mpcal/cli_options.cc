@@ -20,7 +20,7 @@ namespace {
 template <typename Ok>
 CLI::Validator FiniteNumberThat(Ok ok, std::string wanted, std::string type_name) {
   return CLI::Validator(
-      [ok, wanted](std::string& text) -> std::string {
+      [ok, wanted = std::move(wanted)](std::string& text) -> std::string {
         double v = 0.0;
         if (CLI::detail::lexical_cast(text, v) && std::isfinite(v) && ok(v)) return "";
         return fmt::format("must be {}, got '{}'", wanted, text);
@@ -32,7 +32,7 @@ CLI::Validator FiniteNumberThat(Ok ok, std::string wanted, std::string type_name
 // slip, not a request to read or write nothing).
 CLI::Validator NonEmpty(std::string problem, std::string type_name) {
   return CLI::Validator(
-      [problem](const std::string& text) -> std::string {
+      [problem = std::move(problem)](const std::string& text) -> std::string {
         return text.empty() ? problem : "";
       },
       std::move(type_name));
