@@ -58,7 +58,7 @@ PageBuffer::~PageBuffer() { Release(); }
 void PageBuffer::Grow(std::size_t bytes) {
   if (bytes <= size_) return;
   char* const grown = MapPages(bytes);
-  std::memcpy(grown, data_, size_);
+  if (size_ > 0) std::memcpy(grown, data_, size_);
   UnmapPages(data_, size_);
   data_ = grown;
   size_ = bytes;
@@ -367,7 +367,9 @@ bool ChunkPipeline::Read(Slot* c) {
   std::size_t size = carry_.size();
   std::size_t want = std::max({kParseChunkBytes, size, FirstChunkBytes(c)});
   c->Reserve(want, 0);
-  std::memcpy(c->bytes.get(), carry_.data(), size);
+  // An empty carry has no buffer: memcpy's null source is undefined even
+  // for zero bytes.
+  if (size > 0) std::memcpy(c->bytes.get(), carry_.data(), size);
   carry_.clear();
   while (true) {
     size += file_->Read(c->bytes.get() + size, want - size, true, &rows.read_error);
