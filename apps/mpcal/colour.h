@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "mpcal/verdict.h"
+#include "mpcal/check.h"
 
 namespace mpcal::cli {
 

@@ -16,6 +16,7 @@
 #include "calibration_table.h"
 #include "cli_options.h"
 #include "command.h"
+#include "explain_checks.h"
 #include "gyro_table.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/calibration_file.h"
@@ -25,6 +26,7 @@
 #include "mpcal/report.h"
 #include "mpcal/simulate.h"
 #include "mpcal/simulate_walk.h"
+#include "mpcal/verdict.h"
 #include "mpcal/verify.h"
 #include "simulated_bound.h"
 
@@ -35,6 +37,7 @@ struct DemoFlags {
   std::string preset = "mti-g";
   std::uint64_t seed = 1;
   std::string output_dir = "mpcal-demo";
+  bool verbose = false;
 };
 
 // The calibrated session counts as the first power-up; two more of the same
@@ -72,13 +75,16 @@ VerifyResult DemoVerification(const SimulateStaticOptions& sim,
 
 // The gyroscope of the same session beside the accelerometer: its estimate
 // against the truth and the Cramér-Rao bound of the turns.
-void PrintGyroscope(const SimulatedSession& session, const CalibrateResult& result) {
+void PrintGyroscope(const SimulatedSession& session,
+                    const CalibrateResult& result,
+                    bool verbose) {
   if (!result.gyro || !session.truth.gyroscope) return;
   const GyroResult& gyro = *result.gyro;
-  fmt::print("\n{}{}",
-             FormatGyroTable(gyro.calibration, &*session.truth.gyroscope, "truth"),
-             FormatGyroSummary(gyro));
-  for (const std::string& line : GyroFindingMessages(gyro)) fmt::print("{}\n", line);
+  fmt::print(
+      "\n{}",
+      FormatGyroTable(gyro.calibration, &*session.truth.gyroscope, "truth", verbose));
+  if (verbose) fmt::print("{}", FormatGyroSummary(gyro));
+  PrintWarnings(GyroFindingMessages(gyro));
   if (!gyro.converged()) return;
   const Eigen::Matrix<double, 9, 9> bound = GyroCramerRaoBound(session.recording,
                                                                result.detection.intervals,
@@ -117,18 +123,19 @@ void Run(const DemoFlags& f) {
   const Eigen::Matrix<double, 9, 1> bound =
       SimulatedBoundSigma(session, sim.initial_rest_s);
   const Eigen::Matrix<double, 9, 1> truth = ToVector(session.truth.model);
-  fmt::print(
-      "{}\n{}",
-      FormatParameterTable(result.calibration, {{"truth", truth}, {"bound 1σ", bound}}),
-      FormatFitSummary(result));
+  fmt::print("{}",
+             FormatParameterTable(
+                 result.calibration, {{"truth", truth}, {"bound 1σ", bound}}, f.verbose));
+  if (f.verbose) fmt::print("\n{}", FormatFitSummary(result));
   const Eigen::Matrix<double, 9, 1> z =
       (ToVector(result.calibration.model) - truth).cwiseQuotient(bound);
   fmt::print(
       "RMS of (estimate - truth) / Cramér-Rao bound over the 9 parameters: {:.2f} "
       "(an efficient estimator gives 1 on average)\n",
       std::sqrt(z.squaredNorm() / 9.0));
+  PrintGyroscope(session, result, f.verbose);
+  fmt::print("\n{}", FormatChecks(JudgeCalibration(result, CalibrateOptions{}), stdout));
   PrintWarnings(result.warnings);
-  PrintGyroscope(session, result);
 
   const RepeatabilityResult repeatability = DemoRepeatability(sim, result.calibration);
   fmt::print(
@@ -181,6 +188,10 @@ void AddDemoCommand(CLI::App& root) {
   app->add_option("--preset", flags->preset, "Device: colibri, inertiacube3 or mti-g")
       ->capture_default_str();
   app->add_option("--seed", flags->seed, "Random seed")->capture_default_str();
+  app->add_flag("-v,--verbose",
+                flags->verbose,
+                "Also print the diagnostics behind the checks, as 'mpcal calibrate -v' "
+                "does");
   app->add_option("--output-dir",
                   flags->output_dir,
                   "Where the calibration, the truth and the report go")

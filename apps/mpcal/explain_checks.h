@@ -1,4 +1,4 @@
-// A calibration's checks (mpcal/verdict.h) as the lines a user reads: one
+// Checks (mpcal/check.h) as the lines a user reads: one
 // per check, its name, the verdict (coloured on a terminal) and why in a
 // few words.
 #pragma once
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "mpcal/verdict.h"
+#include "mpcal/check.h"
 
 namespace mpcal::cli {
 

@@ -15,6 +15,7 @@
 #include "cli_options.h"
 #include "command.h"
 #include "explain.h"
+#include "explain_checks.h"
 #include "explain_detect.h"
 #include "explain_verify.h"
 #include "mpcal/atomic_file.h"
@@ -57,6 +58,7 @@ struct VerifyFlags {
   std::optional<double> time_offset_s;
   bool no_gyro = false;
   bool no_zupt = false;
+  bool verbose = false;
 };
 
 void PrintRow(std::FILE* out, const char* name, const PathMetrics& m) {
@@ -140,10 +142,11 @@ void WriteOutputs(const VerifyFlags& f, const VerifyResult& result) {
   WriteFileAtomically(f.output, VerificationToJson(result, trajectories));
 }
 
-void PrintSummary(std::FILE* out,
-                  const VerifyFlags& f,
-                  const VerifyInputs& in,
-                  const VerifyResult& result) {
+// The inputs, the clocks and how the walk was integrated: for -v.
+void PrintDetail(std::FILE* out,
+                 const VerifyFlags& f,
+                 const VerifyInputs& in,
+                 const VerifyResult& result) {
   fmt::print(out,
              "IMU {} ({} samples{}) vs reference {} ({} epochs, {}); clocks: {}, offset "
              "{:.3f} s, {:.1f} s in common\n",
@@ -167,6 +170,13 @@ void PrintSummary(std::FILE* out,
       result.gravity_mps2,
       result.initial_rest_s,
       Count(result.stops, "still stretch", "still stretches"));
+}
+
+void PrintSummary(std::FILE* out,
+                  const VerifyFlags& f,
+                  const VerifyInputs& in,
+                  const VerifyResult& result) {
+  if (f.verbose) PrintDetail(out, f, in, result);
   fmt::print(out,
              "  {:<10} {:>12} {:>12} {:>12} {:>12}\n",
              "(m)",
@@ -183,6 +193,7 @@ void PrintSummary(std::FILE* out,
              result.reference.path_length_m);
   PrintRow(out, "raw", result.raw);
   if (result.corrected) PrintRow(out, "corrected", *result.corrected);
+  fmt::print(out, "\n{}", FormatChecks(JudgeVerification(result), out));
   fmt::print(
       out, "wrote {}\n", f.output == "-" ? "the result to standard output" : f.output);
 }
@@ -326,6 +337,10 @@ void AddVerifyCommand(CLI::App& root) {
                           "Field verification (the paper's section 5.2): integrate a "
                           "walk around a closed loop "
                           "raw and corrected, and compare both with a GNSS reference");
+  cmd->add_flag("-v,--verbose",
+                f->verbose,
+                "Also print the inputs, the clocks' alignment and how the walk was "
+                "integrated (attitude, gravity, initial rest, stops)");
   AddInputOutputOptions(cmd, f.get());
   AddIntegrationOptions(cmd, f.get());
   AddTimeOptions(cmd, f.get());

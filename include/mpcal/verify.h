@@ -16,6 +16,7 @@
 
 #include "mpcal/advice.h"
 #include "mpcal/calibration.h"
+#include "mpcal/check.h"
 #include "mpcal/gnss.h"
 #include "mpcal/recording.h"
 #include "mpcal/trajectory.h"
@@ -142,5 +143,15 @@ VerifyResult Verify(const Recording& imu,
                     const GnssTrack& reference,
                     const std::optional<Calibration>& calibration,
                     const VerifyOptions& options);
+
+/// A verification's checks: the correction (is the corrected walk closer to
+/// the reference than the raw one, by the horizontal RMS over the whole
+/// walk), the clock (do the IMU's and the reference's starts of motion agree
+/// on the offset used), the stops (zero-velocity updates between the end
+/// rests) and the gyroscope (did it carry the attitude). A corrected walk no
+/// closer than the raw one is to be looked at, not refused: a level mount
+/// absorbs a constant bias, so a good calibration can leave the walk as it
+/// was; what it says is that this walk does not confirm the calibration.
+std::vector<Check> JudgeVerification(const VerifyResult& result);
 
 }  // namespace mpcal

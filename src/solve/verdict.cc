@@ -136,36 +136,6 @@ Check GyroCheck(const GyroResult& g) {
 
 }  // namespace
 
-std::string_view ToString(Verdict verdict) {
-  switch (verdict) {
-    case Verdict::kGood:
-      return "good";
-    case Verdict::kLookAt:
-      return "look at";
-    case Verdict::kDoNotUse:
-      return "do not use";
-  }
-  return "";
-}
-
-std::string_view ToString(CheckKind kind) {
-  switch (kind) {
-    case CheckKind::kFit:
-      return "fit";
-    case CheckKind::kPositions:
-      return "positions";
-    case CheckKind::kBiasDrift:
-      return "bias drift";
-    case CheckKind::kSplitHalf:
-      return "split-half";
-    case CheckKind::kUnits:
-      return "units";
-    case CheckKind::kGyroscope:
-      return "gyroscope";
-  }
-  return "";
-}
-
 std::vector<Check> JudgeCalibration(const CalibrateResult& result,
                                     const CalibrateOptions& options) {
   const SolveResult& s = result.solve;
@@ -178,12 +148,6 @@ std::vector<Check> JudgeCalibration(const CalibrateResult& result,
                             UnitsCheck(result)};
   if (result.gyro) checks.push_back(GyroCheck(*result.gyro));
   return checks;
-}
-
-Verdict Worst(const std::vector<Check>& checks) {
-  Verdict worst = Verdict::kGood;
-  for (const Check& c : checks) worst = std::max(worst, c.verdict);
-  return worst;
 }
 
 }  // namespace mpcal

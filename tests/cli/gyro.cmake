@@ -35,6 +35,9 @@ mpcal_cli_test(demo_gyroscope EXIT 0
   ARGS demo --output-dir out)
 mpcal_cli_test(demo_gyroscope_turns EXIT 0
   MATCH "^gyroscope: 26 turns between the positions; converged after [0-9]+ iterations"
+  ARGS demo -v --output-dir out)
+mpcal_cli_test(demo_gyroscope_verdict EXIT 0
+  MATCH "^  gyroscope +good +26 turns fit to 0\\.[0-9]+ deg RMS"
   ARGS demo --output-dir out)
 # repeat and report over IMU files (two calibrations of simulated colibri
 # sessions with --gyro, seeds 1 and 2, made by mpcal calibrate).

@@ -20,6 +20,25 @@ mpcal_cli_test(verify_simulated_walk EXIT 0
   ARGS verify --imu ${_walk}/walk.csv --gnss ${_walk}/ref.pos --calib ${_walk}/truth.json
        -o result.json --trajectory-csv walk)
 set_tests_properties(cli.verify_simulated_walk PROPERTIES FIXTURES_REQUIRED simulated_walk)
+# The default output: the table and a verdict per check; the inputs, the
+# clocks and the integration only under -v.
+add_test(NAME cli.verify_simulated_walk_verdicts
+  COMMAND sh -c "set -e; \"$0\" verify --imu \"$1/walk.csv\" --gnss \"$1/ref.pos\" --calib \"$1/truth.json\" -o verdicts.json > verdicts.txt
+    grep -q '^  correction  *good  *the corrected walk is closer to the reference: [0-9.]* m RMS against [0-9.]* m raw' verdicts.txt
+    grep -q '^  clock  *good  *the IMU and the reference line up (offset 0.000 s)' verdicts.txt
+    grep -q '^  stops  *good  *[0-9]* still stretches with the end rests' verdicts.txt
+    grep -q '^  gyroscope  *good  *the gyroscope carried the attitude' verdicts.txt
+    ! grep -q '^attitude:' verdicts.txt
+    \"$0\" verify -v --imu \"$1/walk.csv\" --gnss \"$1/ref.pos\" -o verdicts.json > verbose.txt
+    grep -q '^attitude: levelled at the initial rest' verbose.txt
+    grep -q '^  correction  *look at  *no calibration given' verbose.txt"
+  $<TARGET_FILE:mpcal_cli> ${_walk})
+set_tests_properties(cli.verify_simulated_walk_verdicts PROPERTIES LABELS cli
+  FIXTURES_REQUIRED simulated_walk WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+# A walk verified without a calibration says that it judges only the raw walk.
+mpcal_cli_test(verify_real_walk_no_calibration EXIT 0
+  MATCH "correction +look at +no calibration given"
+  ARGS verify --imu ${_real_imu} ${_real_columns} --gnss ${_real_pos} -o result.json)
 mpcal_cli_test(verify_real_walk EXIT 0
   MATCH "reference +0\\.19 +128\\.6"
   ARGS verify --imu ${_real_imu} ${_real_columns} --gnss ${_real_pos} -o result.json)
