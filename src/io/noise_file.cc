@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/json_reader.h"
+#include "io/json_text.h"
 #include "mpcal/error.h"
 
 namespace mpcal {
@@ -307,7 +308,7 @@ std::string NoiseJson(const NoiseResult& r, const std::string& input, double con
   j["confidence"] = confidence;
   j["accelerometer"] = SensorJson(r.accel_mps2, false);
   if (r.gyro_radps) j["gyroscope"] = SensorJson(*r.gyro_radps, true);
-  return j.dump(1) + "\n";
+  return FiniteJsonText(j, 1, "the noise analysis");
 }
 
 NoiseFile ParseNoiseJson(const std::string& text, const std::string& origin) {
@@ -480,7 +481,7 @@ std::string NoiseTruthJson(const NoiseSimulationOptions& o) {
     }
     j[gyro ? "gyroscope" : "accelerometer"] = s;
   }
-  return j.dump(1) + "\n";
+  return FiniteJsonText(j, 1, "the noise truth");
 }
 
 void WriteImuCsv(

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/json_reader.h"
+#include "io/json_text.h"
 #include "io/result_text.h"
 #include "mpcal/error.h"
 #include "mpcal/plausible.h"
@@ -178,7 +179,7 @@ std::string RepeatabilityToJson(const RepeatabilityResult& result) {
   parameters["scale_factor_error"] = VectorGroup(result, 3);
   parameters["non_orthogonality_rad"] = angles;
   out["parameters"] = parameters;
-  return out.dump(2) + "\n";
+  return FiniteJsonText(out, 2, "the repeatability table");
 }
 
 RepeatabilityResult RepeatabilityFromJson(const std::string& text,

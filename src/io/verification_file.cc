@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/json_reader.h"
+#include "io/json_text.h"
 #include "io/result_text.h"
 #include "mpcal/error.h"
 #include "text/text.h"
@@ -196,7 +197,7 @@ std::string VerificationToJson(
     for (const auto& [role, path] : trajectory_files) files[role] = path;
     j["trajectories"] = files;
   }
-  return j.dump(2) + "\n";
+  return FiniteJsonText(j, 2, "the verification result");
 }
 
 std::string PathToCsv(const TimedPath& path, const std::vector<int>& quality) {

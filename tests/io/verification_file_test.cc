@@ -2,6 +2,7 @@
 // in io: the result JSON and the trajectory CSVs.
 #include "mpcal/verification_file.h"
 
+#include <limits>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -63,6 +64,16 @@ TEST(VerificationFile, ReaderRefusesANegativeDistance) {
   EXPECT_THAT([&] { ParseVerificationJson(VerificationToJson(r, {}), "result.json"); },
               ::testing::ThrowsMessage<Error>(
                   HasSubstr("'reference.path_length_m' = -1 m is negative")));
+}
+
+// nlohmann would write a NaN as null, which reads as "absent": refused.
+TEST(VerificationFile, WriterRefusesANonFiniteNumberNamingItsPath) {
+  VerifyResult r = Result();
+  r.corrected->horizontal_rms_m = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THAT([&] { VerificationToJson(r, {}); },
+              ::testing::ThrowsMessage<Error>(
+                  HasSubstr("cannot write the verification result: "
+                            "'corrected.horizontal_rms_m' is not a finite number")));
 }
 
 TEST(VerificationFile, TrajectoryCsvRoundTripsToTheMillimetre) {
