@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Reading the IMU out of a ~2 GB recording: a 400 Hz sensor_msgs/Imu topic
 # among 30 Hz camera images (640x480 mono8), written by the formats' own
-# writers (Debian's python3-rosbag for ROS 1, Foxglove's @mcap/core for MCAP;
-# bench/bag_bench_ros1.py, bench/bag_bench_mcap.mjs) from one simulated
+# writers (Debian's python3-rosbag for ROS 1, Foxglove's @mcap/core for MCAP,
+# Python's sqlite3 for a ROS 2 bag; bench/bag_bench_ros1.py,
+# bench/bag_bench_mcap.mjs, bench/bag_bench_ros2.py) from one simulated
 # session. For each file, `mpcal detect FILE` (reads every IMU message, then
 # finds the positions) is timed and its peak memory (RSS) measured, against:
 #   - the parse floor of the same rows as CSV (bench/parse_floor.cc: read the
@@ -16,7 +17,7 @@
 #
 #   bench/bag_bench.sh BUILD_DIR [REPETITIONS]
 #
-# The recordings (~6 GB) are made once into $MPCAL_BAG_BENCH_DIR (default
+# The recordings (~8 GB) are made once into $MPCAL_BAG_BENCH_DIR (default
 # /tmp/mpcal_bag_bench) and kept for the next run; delete that directory to
 # free the space. Each time is the median of REPETITIONS runs (default 3)
 # after a warm-up that puts the file in the page cache.
@@ -59,10 +60,10 @@ make_file() {
   "$@"
   mv "$file.tmp" "$file"
 }
-need_kb=$((7 * 1024 * 1024))
+need_kb=$((9 * 1024 * 1024))
 have_kb=$(df -Pk "$cache" | awk 'NR == 2 {print $4}')
 if [ ! -s "$cache/camera_none.bag" ] && [ "$have_kb" -lt "$need_kb" ]; then
-  echo "bag_bench: SKIP ($cache has $((have_kb / 1024)) MB free, the recordings need ~7 GB)"
+  echo "bag_bench: SKIP ($cache has $((have_kb / 1024)) MB free, the recordings need ~9 GB)"
   exit 0
 fi
 ros1=$here/bag_bench_ros1.py
@@ -80,6 +81,14 @@ if [ ! -d "$node_dir/node_modules/@mcap/core" ] && command -v npm >/dev/null; th
     @foxglove/cdr@3.5.0 lz4js@0.2.0 >/dev/null 2>&1) || true
 fi
 files=(imu_lz4.bag camera_lz4.bag camera_none.bag)
+if [ ! -d "$cache/camera_ros2" ]; then
+  echo "writing camera_ros2/ ..."
+  rm -rf "$cache/camera_ros2.tmp"
+  python3 "$here/bag_bench_ros2.py" "$csv" "$cache/camera_ros2.tmp"
+  mv "$cache/camera_ros2.tmp/camera_ros2.tmp_0.db3" "$cache/camera_ros2.tmp/camera_ros2_0.db3"
+  mv "$cache/camera_ros2.tmp" "$cache/camera_ros2"
+fi
+files+=(camera_ros2)
 if [ -d "$node_dir/node_modules/@mcap/core" ] && command -v node >/dev/null; then
   make_file "$cache/camera_lz4.mcap" \
     bash -c 'cd "$1" && node "$2" "$3" "$4"' _ "$node_dir" "$here/bag_bench_mcap.mjs" "$csv" \
@@ -100,6 +109,8 @@ run() {
   if [ "$rc" -gt 1 ]; then cat "$work/stderr" >&2; exit 1; fi
   echo "$(((t1 - t0) / 1000)) $(tail -n1 "$work/rss")" >>"$work/$name"
 }
+# The bytes of a recording: the file, or a ROS 2 bag directory's database.
+data_of() { if [ -d "$1" ]; then echo "$1/$(basename "$1")_0.db3"; else echo "$1"; fi; }
 median() {
   sort -n -k"$2","$2" "$work/$1" | awk -v c="$2" '{v[NR]=$c} END {print v[int((NR+1)/2)]}'
 }
@@ -125,9 +136,9 @@ for _ in $(seq "$reps"); do
   run detect_csv "$mpcal" detect "$csv"
 done
 for f in "${files[@]}"; do
-  cat "$cache/$f" >/dev/null
+  cat "$(data_of "$cache/$f")" >/dev/null
   for _ in $(seq "$reps"); do
-    run "cat_$f" cat "$cache/$f"
+    run "cat_$f" cat "$(data_of "$cache/$f")"
     run "detect_$f" "$mpcal" detect "$cache/$f"
   done
 done
@@ -149,7 +160,7 @@ printf '%-30s %9s %9s %9s %9s %10s %10s\n' "mpcal detect session.csv" "" "$(fmt_
   "$(ratio "$dc" "$f")" "" "" "$(fmt_mb "$dc_kb")"
 for f_name in "${files[@]}"; do
   path=$cache/$f_name
-  size=$(stat -c %s "$path")
+  size=$(stat -c %s "$(data_of "$path")")
   d=$(median "detect_$f_name" 1)
   kb=$(median "detect_$f_name" 2)
   c=$(median "cat_$f_name" 1)
