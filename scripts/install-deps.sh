@@ -24,6 +24,7 @@ demo=(
   libzstd-dev          # MCAP zstd chunks
   liblz4-dev           # ROS 1 and MCAP lz4 chunks (the LZ4 frame format)
   libbz2-dev           # ROS 1 bz2 chunks
+  zlib1g-dev           # MCAP chunks' CRC-32
 )
 # The Debian package (cmake/MpcalPackage.cmake).
 package=(

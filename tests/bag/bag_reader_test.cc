@@ -123,6 +123,7 @@ INSTANTIATE_TEST_SUITE_P(Fixtures,
                                            "imu_cdr_be_lz4.mcap",
                                            "imu_ros1.mcap",
                                            "imu_cdr_plain.mcap",
+                                           "imu_chatter_first.mcap",
                                            "imu_ros2",
                                            "imu_ros2/imu_ros2_0.db3"));
 
@@ -301,6 +302,38 @@ TEST(ReadImuMessages, SkipsChunksWithoutTheTopic) {
               HasSubstr("chunk at byte"));
 }
 
+// The summary's chunk indexes say which chunks hold the topic: the first
+// chunks of imu_chatter_first.mcap hold only /chatter, so damage to their
+// compressed bytes does not stop the IMU messages being read, nor the
+// inspection, which counts from the message indexes.
+TEST(ReadImuMessages, McapSkipsChunksWithoutTheTopic) {
+  ScratchDir dir;
+  const std::string zstd("\x04\0\0\0zstd", 8);  // a chunk's compression field
+  std::string mcap = ReadFile(Bag("imu_chatter_first.mcap"));
+  const std::size_t first_chunk = FindNth(mcap, zstd, 0);
+  ASSERT_NE(first_chunk, std::string::npos);
+  // After the name: the records' length (8 bytes), then the zstd frame.
+  for (std::size_t i = first_chunk + 20; i < first_chunk + 400; ++i) mcap[i] = '\xff';
+  std::vector<std::string> w;
+  const std::string skip = dir.Write("skip.mcap", mcap);
+  const auto messages = ReadAll(skip, w);
+  ASSERT_EQ(messages.size(), kRows);
+  ExpectSessionPrefix(messages);
+  const BagSummary summary = InspectBag(skip);
+  ASSERT_EQ(summary.topics.size(), 2u);
+  for (const BagTopic& t : summary.topics)
+    EXPECT_EQ(t.messages,
+              static_cast<std::int64_t>(t.name == "/chatter" ? kChatterMessages : kRows))
+        << t.name;
+  // The same damage in a chunk that holds IMU messages is found.
+  std::string imu = ReadFile(Bag("imu_chatter_first.mcap"));
+  const std::size_t later = FindNth(imu, zstd, 5);
+  ASSERT_NE(later, std::string::npos);
+  for (std::size_t i = later + 20; i < later + 400; ++i) imu[i] = '\xff';
+  EXPECT_THAT(Error([&] { ReadAll(dir.Write("bad.mcap", imu), w); }),
+              HasSubstr("bad.mcap: chunk at byte"));
+}
+
 TEST(ReadImuMessages, McapUnknownCompressionIsNamed) {
   ScratchDir dir;
   std::string mcap = ReadFile(Bag("imu_cdr_zstd.mcap"));
@@ -342,20 +375,22 @@ TEST(ReadImuMessages, AChunkSizeAboveTheCapIsRefused) {
               ::testing::AllOf(HasSubstr("chunk at byte"), HasSubstr("above the cap")));
 }
 
-// The fuzzer's seed corpus, replayed: each file is read or refused with an
-// mpcal::Error, nothing else.
+// The container fuzz targets' seed corpora, replayed: each file is read or
+// refused with an mpcal::Error, nothing else.
 TEST(ReadImuMessages, FuzzSeedsAreReadOrRefused) {
-  const std::filesystem::path seeds =
-      std::filesystem::path(MPCAL_TEST_DATA_DIR) / ".." / "fuzz" / "bag_reader";
   int files = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(seeds)) {
-    std::vector<std::string> w;
-    try {
-      InspectBag(entry.path().string());
-      ReadAll(entry.path().string(), w);
-    } catch (const mpcal::Error&) {
+  for (const char* target : {"ros1_bag", "mcap_bag"}) {
+    const std::filesystem::path seeds =
+        std::filesystem::path(MPCAL_TEST_DATA_DIR) / ".." / "fuzz" / target;
+    for (const auto& entry : std::filesystem::directory_iterator(seeds)) {
+      std::vector<std::string> w;
+      try {
+        InspectBag(entry.path().string());
+        ReadAll(entry.path().string(), w);
+      } catch (const mpcal::Error&) {
+      }
+      ++files;
     }
-    ++files;
   }
   EXPECT_GE(files, 8);
 }

@@ -15,6 +15,10 @@
 //   imu_cdr_be_lz4.mcap CDR big endian, lz4 (frame) chunks, summary and indexes
 //   imu_ros1.mcap       ROS 1 serialisation, chunks stored uncompressed
 //   imu_cdr_plain.mcap  CDR, no chunks, no summary: a reader must scan it
+//   imu_chatter_first.mcap  CDR little endian, zstd chunks, summary and
+//                       indexes, and 300 /chatter messages before the first
+//                       row (1 ms before it), so the first chunks hold no
+//                       IMU message (as make_ros1_bags.py's bags)
 import { createRequire } from "node:module";
 import fs from "node:fs";
 import path from "node:path";
@@ -90,7 +94,7 @@ function ros1String(text) {
   return b;
 }
 
-async function write(name, { encoding, kind, compress, chunked }) {
+async function write(name, { encoding, kind, compress, chunked, warmup = 0 }) {
   const parts = [];
   let size = 0n;
   const writable = {
@@ -133,6 +137,14 @@ async function write(name, { encoding, kind, compress, chunked }) {
   const rows = readRows();
   const stamps = rows.map((r) => EPOCH_NS + toNs(r.t));
   [stamps[SWAPPED[0]], stamps[SWAPPED[1]]] = [stamps[SWAPPED[1]], stamps[SWAPPED[0]]];
+  for (let k = 0; k < warmup; ++k) {
+    const logTime = EPOCH_NS + toNs(rows[0].t) + LATENCY_NS - 1000000n + BigInt(k);
+    const text = `warming up ${k}`;
+    await writer.addMessage({
+      channelId: chatter, sequence: k, logTime, publishTime: logTime,
+      data: ros2 ? cdrString(text) : ros1String(text),
+    });
+  }
   for (let i = 0; i < rows.length; ++i) {
     const logTime = EPOCH_NS + toNs(rows[i].t) + LATENCY_NS;
     if (i % 10 === 0) {
@@ -161,3 +173,6 @@ await write("imu_cdr_zstd.mcap", { encoding: "cdr", kind: LE, compress: zstdChun
 await write("imu_cdr_be_lz4.mcap", { encoding: "cdr", kind: BE, compress: lz4Chunk, chunked: true });
 await write("imu_ros1.mcap", { encoding: "ros1", kind: LE, compress: undefined, chunked: true });
 await write("imu_cdr_plain.mcap", { encoding: "cdr", kind: LE, compress: undefined, chunked: false });
+await write("imu_chatter_first.mcap", {
+  encoding: "cdr", kind: LE, compress: zstdChunk, chunked: true, warmup: 300,
+});

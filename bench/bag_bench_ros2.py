@@ -1,0 +1,68 @@
+#!/usr/bin/env python3
+"""Writes the bag benchmark's ROS 2 bag (SQLite) with Python's sqlite3 and the
+CDR encoder of tests/data/bags/make_ros2_db3.py (not mpcal), in the tables
+ros2/rosbag2's SQLite storage creates (that script cites them).
+
+Each CSV row (t in s, ax ay az in m/s2, gx gy gz in rad/s) becomes one
+sensor_msgs/msg/Imu on /imu/data, header stamp and timestamp 1700000000 s + t;
+a sensor_msgs/msg/Image's bytes (640x480 mono8 of pseudo-random pixels and
+its header's length, 307,264 bytes) on /camera/image_raw every 1/30 s among
+them, in time order, as a recorder inserts two topics.
+
+  python3 bag_bench_ros2.py CSV OUT_DIR    (writes OUT_DIR/metadata.yaml and
+                                            OUT_DIR/<name>_0.db3)
+"""
+import csv
+import os
+import random
+import sqlite3
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                "..", "tests", "data", "bags"))
+from make_ros2_db3 import imu  # noqa: E402  (the fixtures' CDR encoder)
+
+EPOCH_NS = 1700000000 * 10**9
+CAMERA_HZ = 30
+
+
+def main():
+    csv_path, out = sys.argv[1], sys.argv[2]
+    os.makedirs(out)
+    name = os.path.basename(os.path.normpath(out))
+    db = sqlite3.connect(os.path.join(out, name + "_0.db3"))
+    db.executescript("""
+      CREATE TABLE schema(schema_version INTEGER PRIMARY KEY, ros_distro TEXT NOT NULL);
+      CREATE TABLE metadata(id INTEGER PRIMARY KEY, metadata_version INTEGER NOT NULL,
+                            metadata TEXT NOT NULL);
+      CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL,
+                          serialization_format TEXT NOT NULL,
+                          offered_qos_profiles TEXT NOT NULL,
+                          type_description_hash TEXT NOT NULL);
+      CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL,
+                            timestamp INTEGER NOT NULL, data BLOB NOT NULL);
+      CREATE INDEX timestamp_idx ON messages (timestamp ASC);
+      INSERT INTO schema VALUES (4, 'jazzy');
+      INSERT INTO topics VALUES (1, '/camera/image_raw', 'sensor_msgs/msg/Image', 'cdr', '', '');
+      INSERT INTO topics VALUES (2, '/imu/data', 'sensor_msgs/msg/Imu', 'cdr', '', '');
+    """)
+    rng = random.Random(7)
+    frames = [rng.randbytes(640 * 480 + 64) for _ in range(8)]
+    frame = 0
+    with open(csv_path, newline="") as f:
+        for row in csv.DictReader(f):
+            t_ns = EPOCH_NS + int(round(float(row["t"]) * 1e9))
+            while EPOCH_NS + frame * 10**9 // CAMERA_HZ <= t_ns:
+                db.execute("INSERT INTO messages(topic_id, timestamp, data) VALUES (1, ?, ?)",
+                           (EPOCH_NS + frame * 10**9 // CAMERA_HZ, frames[frame % len(frames)]))
+                frame += 1
+            db.execute("INSERT INTO messages(topic_id, timestamp, data) VALUES (2, ?, ?)",
+                       (t_ns, imu(row, t_ns)))
+    db.commit()
+    db.close()
+    with open(os.path.join(out, "metadata.yaml"), "w") as f:
+        f.write("rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: sqlite3\n")
+
+
+if __name__ == "__main__":
+    main()
