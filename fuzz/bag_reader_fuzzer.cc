@@ -6,11 +6,15 @@
 // or mpcal::Error is a finding: another exception, a sanitizer report, a
 // timeout or memory beyond the limit (every length is checked against what
 // remains and the caps in bag.h), or a batch that breaks the sink's contract.
+// The writer's walk over the input (RewriteImuMessages, as `apply` runs it)
+// is fuzzed the same way, and what it writes must read back whole: every
+// message it edited, with no warning.
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <span>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -43,5 +47,32 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     Check(messages <= size, "no more messages than bytes");
   } catch (const mpcal::Error&) {
   }
+  std::stringstream rewritten;
+  mpcal::BagRewriteResult written;
+  try {
+    std::vector<std::string> warnings;
+    written = mpcal::RewriteImuMessages(
+        path,
+        rewritten,
+        "/imu/data",
+        [](mpcal::ImuMessage& m) { m.linear_acceleration_mps2.x() += 1.0; },
+        warnings);
+  } catch (const mpcal::Error&) {
+    return 0;
+  }
+  const std::string bytes = rewritten.str();
+  // The one in-memory file now holds the output: the input is read whole.
+  const std::string out = mpcal::fuzz::WriteMemoryFile(bytes.data(), bytes.size());
+  std::vector<std::string> warnings;
+  std::int64_t read_back = 0;
+  mpcal::ReadImuMessages(
+      out,
+      "/imu/data",
+      [&](std::span<const mpcal::ImuMessage> batch) {
+        read_back += static_cast<std::int64_t>(batch.size());
+      },
+      warnings);
+  Check(read_back == written.imu_messages, "the rewritten messages read back");
+  Check(warnings.empty() || written.imu_messages == 0, "the rewritten file is whole");
   return 0;
 }
