@@ -183,10 +183,9 @@ void RunApplyBag(const CLI::App& cmd, const ApplyFlags& flags) {
   if (!flags.output.ends_with(extension)) {
     throw CLI::ValidationError(
         "--output",
-        fmt::format("'{}' is a {} recording and is corrected into one of its kind: "
-                    "name the output '*{}'",
+        fmt::format("'{}' is {} and is corrected into one: name the output '*{}'",
                     flags.input,
-                    format == BagFormat::kRos1 ? "ROS 1 bag" : "MCAP",
+                    format == BagFormat::kRos1 ? "a ROS 1 bag" : "an MCAP file",
                     extension));
   }
   CheckOutput(flags.output, {flags.calibration, flags.input});

@@ -44,7 +44,7 @@ foreach(fixture IN ITEMS imu_none.bag imu_bz2.bag imu_lz4.bag imu_cdr_zstd.mcap
 endforeach()
 
 mpcal_cli_test(apply_bag_output_of_another_kind EXIT 2
-  MATCH "^mpcal: error: --output: '.*imu_lz4\\.bag' is a ROS 1 bag recording and is corrected into one of its kind: name the output '\\*\\.bag'"
+  MATCH "^mpcal: error: --output: '.*imu_lz4\\.bag' is a ROS 1 bag and is corrected into one: name the output '\\*\\.bag'"
   ABSENT out.mcap
   ARGS apply ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags}/imu_lz4.bag -o out.mcap)
 mpcal_cli_test(apply_bag_text_log_flag EXIT 2
