@@ -202,7 +202,11 @@ void RunApplyBag(const CLI::App& cmd, const ApplyFlags& flags) {
         Count(static_cast<std::size_t>(result.unmeasured_messages), "message"),
         result.topic)});
   }
-  if (result.rest_mismatch) PrintWarnings({ExplainRestMismatch(*result.rest_mismatch)});
+  // A recording states its units (m/s², REP 103): no flag would change them.
+  if (result.rest_mismatch) {
+    PrintWarnings({result.rest_mismatch->what +
+                   "; is it the calibrated sensor, and does its driver publish m/s²?"});
+  }
   fmt::print(stderr,
              "mpcal: the covariances are the input's, copied as they are (the "
              "calibration removes systematic errors, not the noise the driver states)\n");
