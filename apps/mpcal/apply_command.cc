@@ -20,6 +20,7 @@
 #include "mpcal/calibration_file.h"
 #include "mpcal/count.h"
 #include "mpcal/error.h"
+#include "mpcal/noise_file.h"
 #include "progress.h"
 
 namespace mpcal::cli {
@@ -32,6 +33,7 @@ struct ApplyFlags {
   ApplyOptions options;
   std::optional<AccelUnits> out_units;
   std::optional<GyroUnits> out_gyro_units;
+  std::string noise;
 };
 
 // A file whose gyroscope block says rad/s while the command line it records
@@ -151,6 +153,58 @@ std::string_view ExtensionOf(BagFormat format) {
   return format == BagFormat::kRos1 ? ".bag" : format == BagFormat::kMcap ? ".mcap" : "";
 }
 
+// The white noise density of each axis of a noise analysis's sensor; empty
+// when an axis has none measured.
+std::optional<Eigen::Vector3d> WhiteNoiseOf(const SensorNoise& sensor) {
+  Eigen::Vector3d n;
+  for (int i = 0; i < 3; ++i) {
+    const auto& value =
+        sensor.axes[static_cast<std::size_t>(i)].term(NoiseTerm::kWhiteNoise).value;
+    if (!value) return std::nullopt;
+    n[i] = *value;
+  }
+  return n;
+}
+
+void SetWhiteNoise(const std::string& path, BagApplyOptions& options) {
+  const NoiseFile noise = ReadNoiseFile(path);
+  options.accel_white_noise_mps2_per_rthz = WhiteNoiseOf(noise.result.accel_mps2);
+  if (!options.accel_white_noise_mps2_per_rthz) {
+    throw Error(ErrorKind::kInput,
+                fmt::format("'{}': the accelerometer's white noise is not measured on "
+                            "every axis, so the covariances cannot be set from it",
+                            path));
+  }
+  if (noise.result.gyro_radps) {
+    options.gyro_white_noise_radps_per_rthz = WhiteNoiseOf(*noise.result.gyro_radps);
+  }
+}
+
+// The one line that says whose covariances the messages carry.
+void PrintCovariances(const ApplyFlags& flags, const BagApplyResult& result) {
+  if (!result.covariance_rate_hz) {
+    fmt::print(stderr,
+               "mpcal: the covariances are the input's, copied as they are (the "
+               "calibration removes systematic errors, not the noise the driver "
+               "states)\n");
+    return;
+  }
+  const auto diagonal = [](const Eigen::Vector3d& v) {
+    return fmt::format("{:.4g}, {:.4g}, {:.4g}", v.x(), v.y(), v.z());
+  };
+  fmt::print(stderr,
+             "mpcal: the covariances are set from '{}' as N²·f at {:.6g} Hz: linear "
+             "acceleration diagonal {} (m/s²)²{}\n",
+             flags.noise,
+             *result.covariance_rate_hz,
+             diagonal(*result.covariances.linear_acceleration_m2ps4),
+             result.covariances.angular_velocity_rad2ps2
+                 ? fmt::format(", angular velocity diagonal {} (rad/s)²",
+                               diagonal(*result.covariances.angular_velocity_rad2ps2))
+                 : std::string("; the angular velocity's are the input's (the file has "
+                               "no gyroscope white noise)"));
+}
+
 // A recording corrected into a recording of its own kind. Its messages are
 // in m/s² and rad/s in and out, so the flags that say how a text log is
 // read or written have nothing to act on.
@@ -188,10 +242,11 @@ void RunApplyBag(const CLI::App& cmd, const ApplyFlags& flags) {
                     format == BagFormat::kRos1 ? "a ROS 1 bag" : "an MCAP file",
                     extension));
   }
-  CheckOutput(flags.output, {flags.calibration, flags.input});
+  CheckOutput(flags.output, {flags.calibration, flags.input, flags.noise});
   const Calibration calibration = ReadCalibrationFile(flags.calibration);
   BagApplyOptions options;
   options.topic = flags.options.log.topic;
+  if (!flags.noise.empty()) SetWhiteNoise(flags.noise, options);
   const BagApplyResult result =
       ApplyCalibrationToBag(calibration, flags.input, flags.output, options);
   PrintWarnings(result.warnings);
@@ -207,9 +262,7 @@ void RunApplyBag(const CLI::App& cmd, const ApplyFlags& flags) {
     PrintWarnings({result.rest_mismatch->what +
                    "; is it the calibrated sensor, and does its driver publish m/s²?"});
   }
-  fmt::print(stderr,
-             "mpcal: the covariances are the input's, copied as they are (the "
-             "calibration removes systematic errors, not the noise the driver states)\n");
+  PrintCovariances(flags, result);
   fmt::print(
       "corrected {} on '{}' of '{}' into '{}' (linear acceleration{}; {} of other "
       "topics copied; chunks {}",
@@ -232,6 +285,13 @@ void RunApplyBag(const CLI::App& cmd, const ApplyFlags& flags) {
 
 void RunApply(const CLI::App& cmd, const ApplyFlags& flags) {
   if (IsBag(flags.input)) return RunApplyBag(cmd, flags);
+  if (!flags.noise.empty()) {
+    throw CLI::ValidationError(
+        "--noise",
+        fmt::format("'{}' is a text log, which has no covariances: the noise analysis "
+                    "sets those of a ROS 1 bag or an MCAP file",
+                    flags.input));
+  }
   if (flags.calibration == "-" && flags.input == "-") {
     throw Error("the calibration file and the log cannot both be standard input ('-')");
   }
@@ -303,6 +363,13 @@ void AddApplyCommand(CLI::App& root) {
          "Units of the corrected gyroscope columns (an IMU calibration): rads or dps "
          "(default: the log's units; rad/s for a log in counts)")
       ->transform(OneOf(out_gyro_units))
+      ->group("Output");
+  cmd->add_option("--noise",
+                  flags->noise,
+                  "Noise analysis (JSON of 'mpcal noise --json'): the covariances of a "
+                  "corrected recording's vectors set to N²·f per axis (f the topic's "
+                  "message rate); default: the recording's own kept")
+      ->check(InputPath)
       ->group("Output");
   cmd->footer(
       "Example:\n"

@@ -182,6 +182,12 @@ struct BagApplyOptions {
   std::string topic;
   /// As ApplyOptions::rest_tolerance.
   double rest_tolerance = 0.05;
+  /// White noise densities N per axis (a noise analysis's): when given, the
+  /// covariance of each corrected vector is set to the variance of one
+  /// sample, N²·f on the diagonal (f the topic's message rate, Hz), 0
+  /// elsewhere; empty: the message's own covariance kept.
+  std::optional<Eigen::Vector3d> accel_white_noise_mps2_per_rthz;
+  std::optional<Eigen::Vector3d> gyro_white_noise_radps_per_rthz;
 };
 
 struct BagApplyResult {
@@ -196,6 +202,10 @@ struct BagApplyResult {
   /// Whether the angular velocity was corrected too (a calibration with a
   /// gyroscope, messages that measure it).
   bool gyro_corrected = false;
+  /// The covariances written (BagApplyOptions' white noise), and the
+  /// message rate they were set for; empty when the messages' own are kept.
+  ImuCovariances covariances;
+  std::optional<double> covariance_rate_hz;
   /// Chunk compressions written, as the input's.
   std::vector<std::string> compressions;
   std::optional<double> rest_magnitude_mps2;
@@ -209,11 +219,13 @@ struct BagApplyResult {
 /// acceleration by the accelerometer's model (m/s² in, m/s² out, as
 /// ApplyCalibration with a log in m/s²), the angular velocity by the
 /// gyroscope's when the calibration has one (rad/s in and out). The
-/// covariances are the input's: the calibration removes systematic errors
-/// and leaves the noise the driver states as it was.
+/// covariances are the input's (the calibration removes systematic errors
+/// and leaves the noise the driver states as it was), or set from the white
+/// noise given (BagApplyOptions).
 /// \throws mpcal::Error for a calibration in counts (a recording is in m/s²
 ///   and rad/s), `output` naming the input, no sensor_msgs/Imu topic or
-///   several with none chosen, a topic with no message, and as
+///   several with none chosen, a topic with no message (or, with a white
+///   noise given, fewer than 2 or no time between its first and last), and as
 ///   RewriteImuMessages; no output file is then left.
 BagApplyResult ApplyCalibrationToBag(const Calibration& calibration,
                                      const std::string& input,

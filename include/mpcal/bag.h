@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <iosfwd>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -121,6 +122,14 @@ void ReadImuMessages(const std::string& path,
 /// angular_velocity_radps); whatever else it changes is not written.
 using ImuEdit = std::function<void(ImuMessage&)>;
 
+/// Covariance diagonals RewriteImuMessages writes into each message it
+/// edits, for each vector the message measures (the 3×3 covariance's other
+/// elements set to 0); empty: the message's own kept.
+struct ImuCovariances {
+  std::optional<Eigen::Vector3d> linear_acceleration_m2ps4;
+  std::optional<Eigen::Vector3d> angular_velocity_rad2ps2;
+};
+
 /// What RewriteImuMessages wrote.
 struct BagRewriteResult {
   BagFormat format = BagFormat::kRos1;
@@ -139,8 +148,9 @@ struct BagRewriteResult {
 /// message indexes and summary) made afresh for the file written. Each
 /// sensor_msgs/Imu message on `topic` is decoded, given to `edit`, and its two
 /// vectors written back in place in the message's own serialisation (ROS 1
-/// or CDR, its byte order); its header, orientation and the three
-/// covariances stay as they were. A vector the message marks as not measured
+/// or CDR, its byte order), with the covariance diagonals `covariances`
+/// gives; its header, orientation and the other covariances stay as they
+/// were. A vector the message marks as not measured
 /// (covariance starting with −1) is written back unchanged. Memory is a few
 /// chunks and one small entry per chunk, whatever the recording's length.
 /// ROS 1 bags are written as Debian's rosbag (bag.py) writes them: the bag
@@ -155,6 +165,7 @@ BagRewriteResult RewriteImuMessages(const std::string& input,
                                     std::ostream& output,
                                     const std::string& topic,
                                     const ImuEdit& edit,
-                                    std::vector<std::string>& warnings);
+                                    std::vector<std::string>& warnings,
+                                    const ImuCovariances& covariances = {});
 
 }  // namespace mpcal

@@ -37,6 +37,46 @@ std::string TopicToCorrect(const std::string& input, const std::string& topic) {
               advice);
 }
 
+// The topic's message rate (Hz) from the recording's index (its receive
+// times), which the per-sample variance N²·f needs.
+double MessageRateHz(const std::string& input, const std::string& topic) {
+  for (const BagTopic& t : InspectBag(input).topics) {
+    if (t.name != topic) continue;
+    if (t.messages >= 2 && t.last_ns > t.first_ns) {
+      return static_cast<double>(t.messages - 1) /
+             (static_cast<double>(t.last_ns - t.first_ns) * 1e-9);
+    }
+  }
+  throw Error(ErrorKind::kInput,
+              fmt::format("{}: topic '{}' has no message rate (fewer than 2 messages, "
+                          "or no time between its first and last) to turn a white "
+                          "noise density into a variance per sample",
+                          input,
+                          topic));
+}
+
+// The covariances BagApplyOptions asks for: N²·f per axis.
+ImuCovariances CovariancesFor(const BagApplyOptions& options,
+                              const std::string& input,
+                              const std::string& topic,
+                              std::optional<double>& rate_hz) {
+  ImuCovariances covariances;
+  if (!options.accel_white_noise_mps2_per_rthz &&
+      !options.gyro_white_noise_radps_per_rthz) {
+    return covariances;
+  }
+  rate_hz = MessageRateHz(input, topic);
+  if (options.accel_white_noise_mps2_per_rthz) {
+    covariances.linear_acceleration_m2ps4 =
+        options.accel_white_noise_mps2_per_rthz->cwiseAbs2() * *rate_hz;
+  }
+  if (options.gyro_white_noise_radps_per_rthz) {
+    covariances.angular_velocity_rad2ps2 =
+        options.gyro_white_noise_radps_per_rthz->cwiseAbs2() * *rate_hz;
+  }
+  return covariances;
+}
+
 }  // namespace
 
 BagApplyResult ApplyCalibrationToBag(const Calibration& calibration,
@@ -55,6 +95,8 @@ BagApplyResult ApplyCalibrationToBag(const Calibration& calibration,
     correct_gyro.emplace(*calibration.gyroscope, GyroUnits::kRadps, GyroUnits::kRadps);
   }
   result.topic = TopicToCorrect(input, options.topic);
+  result.covariances =
+      CovariancesFor(options, input, result.topic, result.covariance_rate_hz);
   internal::RestSummary rest(1.0);
   const ImuEdit edit = [&](ImuMessage& m) {
     if (!m.has_linear_acceleration) {
@@ -73,7 +115,8 @@ BagApplyResult ApplyCalibrationToBag(const Calibration& calibration,
   };
   BagRewriteResult written;
   WriteStreamAtomically(output, [&](std::ostream& out) {
-    written = RewriteImuMessages(input, out, result.topic, edit, result.warnings);
+    written = RewriteImuMessages(
+        input, out, result.topic, edit, result.warnings, result.covariances);
     if (written.imu_messages == 0) {
       throw Error(
           ErrorKind::kInput,

@@ -116,12 +116,13 @@ BagRewriteResult RewriteImuMessages(const std::string& input,
                                     std::ostream& output,
                                     const std::string& topic,
                                     const ImuEdit& edit,
-                                    std::vector<std::string>& warnings) {
+                                    std::vector<std::string>& warnings,
+                                    const ImuCovariances& covariances) {
   switch (DetectBagFormat(input)) {
     case BagFormat::kRos1:
-      return bag::RewriteRos1(input, output, topic, edit, warnings);
+      return bag::RewriteRos1(input, output, topic, edit, covariances, warnings);
     case BagFormat::kMcap:
-      return bag::RewriteMcap(input, output, topic, edit, warnings);
+      return bag::RewriteMcap(input, output, topic, edit, covariances, warnings);
     case BagFormat::kRos2Sqlite:
       break;
   }

@@ -20,6 +20,8 @@ namespace {
 // them, so the vectors lie at these distances from its end.
 constexpr std::size_t kAngularFromEnd = 8 * (3 + 9 + 3 + 9);
 constexpr std::size_t kLinearFromEnd = 8 * (3 + 9);
+constexpr std::size_t kAngularCovarianceFromEnd = 8 * (9 + 3 + 9);
+constexpr std::size_t kLinearCovarianceFromEnd = 8 * 9;
 
 void PutVector(std::string& data,
                std::size_t at,
@@ -32,6 +34,18 @@ void PutVector(std::string& data,
       for (int k = 0; k < 4; ++k) std::swap(raw[k], raw[7 - k]);
     }
     std::memcpy(data.data() + at + 8 * static_cast<std::size_t>(i), raw, 8);
+  }
+}
+
+// A row-major 3×3 covariance with `diagonal` on its diagonal, 0 elsewhere.
+void PutCovariance(std::string& data,
+                   std::size_t at,
+                   const Eigen::Vector3d& diagonal,
+                   bool big_endian) {
+  for (int row = 0; row < 3; ++row) {
+    Eigen::Vector3d values = Eigen::Vector3d::Zero();
+    values[row] = diagonal[row];
+    PutVector(data, at + 24 * static_cast<std::size_t>(row), values, big_endian);
   }
 }
 
@@ -95,7 +109,11 @@ std::string Compress(std::string_view compression, std::string_view data) {
   throw DataError("unknown compression '" + std::string(compression) + "'");
 }
 
-void EditImu(std::string& data, bool cdr, std::int64_t receive_ns, const ImuEdit& edit) {
+void EditImu(std::string& data,
+             bool cdr,
+             std::int64_t receive_ns,
+             const ImuEdit& edit,
+             const ImuCovariances& covariances) {
   const ImuMessage read =
       cdr ? DecodeCdrImu(data, receive_ns) : DecodeRos1Imu(data, receive_ns);
   ImuMessage edited = read;
@@ -110,6 +128,18 @@ void EditImu(std::string& data, bool cdr, std::int64_t receive_ns, const ImuEdit
   if (read.has_linear_acceleration) {
     PutVector(
         data, data.size() - kLinearFromEnd, edited.linear_acceleration_mps2, big_endian);
+    if (covariances.linear_acceleration_m2ps4) {
+      PutCovariance(data,
+                    data.size() - kLinearCovarianceFromEnd,
+                    *covariances.linear_acceleration_m2ps4,
+                    big_endian);
+    }
+  }
+  if (read.has_angular_velocity && covariances.angular_velocity_rad2ps2) {
+    PutCovariance(data,
+                  data.size() - kAngularCovarianceFromEnd,
+                  *covariances.angular_velocity_rad2ps2,
+                  big_endian);
   }
 }
 

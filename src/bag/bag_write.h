@@ -22,9 +22,13 @@ std::string Compress(std::string_view compression, std::string_view data);
 /// Decodes the sensor_msgs/Imu in `data` (ROS 1 serialisation, or CDR when
 /// `cdr`), hands it to `edit` and writes its two vectors back in place, in
 /// the message's byte order; a vector the message marks as not measured is
-/// left as it was.
+/// left as it was, and so is its covariance unless `covariances` gives one.
 /// \throws DataError as DecodeRos1Imu and DecodeCdrImu.
-void EditImu(std::string& data, bool cdr, std::int64_t receive_ns, const ImuEdit& edit);
+void EditImu(std::string& data,
+             bool cdr,
+             std::int64_t receive_ns,
+             const ImuEdit& edit,
+             const ImuCovariances& covariances);
 
 /// Little-endian appends.
 template <typename T>
@@ -52,11 +56,13 @@ BagRewriteResult RewriteRos1(const std::string& input,
                              std::ostream& output,
                              const std::string& topic,
                              const ImuEdit& edit,
+                             const ImuCovariances& covariances,
                              std::vector<std::string>& warnings);
 BagRewriteResult RewriteMcap(const std::string& input,
                              std::ostream& output,
                              const std::string& topic,
                              const ImuEdit& edit,
+                             const ImuCovariances& covariances,
                              std::vector<std::string>& warnings);
 
 }  // namespace mpcal::bag

@@ -56,8 +56,9 @@ class McapRewriter {
   McapRewriter(BagFile& file,
                std::ostream& out,
                const std::string& topic,
-               const ImuEdit& edit)
-      : file_(file), out_(out), topic_(topic), edit_(edit) {}
+               const ImuEdit& edit,
+               const ImuCovariances& covariances)
+      : file_(file), out_(out), topic_(topic), edit_(edit), covariances_(covariances) {}
 
   CountingOut& out() { return out_; }
   BagRewriteResult& result() { return result_; }
@@ -106,7 +107,8 @@ class McapRewriter {
       return;
     }
     std::string data(m.data);
-    EditImu(data, imu->second, static_cast<std::int64_t>(m.log_time_ns), edit_);
+    EditImu(
+        data, imu->second, static_cast<std::int64_t>(m.log_time_ns), edit_, covariances_);
     body.replace(kMessageDataAt, data.size(), data);
     ++result_.imu_messages;
   }
@@ -231,6 +233,7 @@ class McapRewriter {
   CountingOut out_;
   const std::string& topic_;
   const ImuEdit& edit_;
+  const ImuCovariances& covariances_;
   std::map<std::uint16_t, std::string> schema_names_;
   std::map<std::uint16_t, std::string> schemas_;   // id -> the record's bytes
   std::map<std::uint16_t, std::string> channels_;  // id -> the record's bytes
@@ -273,6 +276,7 @@ BagRewriteResult RewriteMcap(const std::string& input,
                              std::ostream& output,
                              const std::string& topic,
                              const ImuEdit& edit,
+                             const ImuCovariances& covariances,
                              std::vector<std::string>& warnings) {
   BagFile file(input);
   if (file.ReadSome(0, kMagic.size()) != kMagic) {
@@ -280,7 +284,7 @@ BagRewriteResult RewriteMcap(const std::string& input,
   }
   const std::uint64_t data_end = DataEnd(file, warnings);
   const bool complete = data_end != file.size();
-  McapRewriter w(file, output, topic, edit);
+  McapRewriter w(file, output, topic, edit, covariances);
   w.out().Write(kMagic);
   std::uint64_t offset = kMagic.size();
   try {

@@ -85,8 +85,9 @@ class Ros1Rewriter {
   Ros1Rewriter(BagFile& file,
                std::ostream& out,
                const std::string& topic,
-               const ImuEdit& edit)
-      : file_(file), out_(out), topic_(topic), edit_(edit) {}
+               const ImuEdit& edit,
+               const ImuCovariances& covariances)
+      : file_(file), out_(out), topic_(topic), edit_(edit), covariances_(covariances) {}
 
   void Connection(std::string_view raw, const Record& r, std::string_view data) {
     const ros1::Connection c = ros1::ParseConnection(r, data);
@@ -134,7 +135,7 @@ class Ros1Rewriter {
         ++info.counts[conn];
         if (imu_.count(conn) != 0) {
           std::string data = contents.substr(m.data_offset, m.data_length);
-          EditImu(data, /*cdr=*/false, t, edit_);
+          EditImu(data, /*cdr=*/false, t, edit_, covariances_);
           contents.replace(m.data_offset, m.data_length, data);
           ++result_.imu_messages;
         } else {
@@ -198,6 +199,7 @@ class Ros1Rewriter {
   CountingOut out_;
   const std::string& topic_;
   const ImuEdit& edit_;
+  const ImuCovariances& covariances_;
   std::map<std::uint32_t, std::string> connections_;  // id -> the record's bytes
   std::vector<BagTopic> topics_;
   std::set<std::uint32_t> imu_;
@@ -253,6 +255,7 @@ BagRewriteResult RewriteRos1(const std::string& input,
                              std::ostream& output,
                              const std::string& topic,
                              const ImuEdit& edit,
+                             const ImuCovariances& covariances,
                              std::vector<std::string>& warnings) {
   BagFile file(input);
   if (file.ReadSome(0, ros1::kMagic.size()) != ros1::kMagic) {
@@ -294,7 +297,7 @@ BagRewriteResult RewriteRos1(const std::string& input,
                 "a ROS 1 bag is written to a file (its header is completed at the end), "
                 "not to a pipe or a terminal");
   }
-  Ros1Rewriter w(file, output, topic, edit);
+  Ros1Rewriter w(file, output, topic, edit, covariances);
   w.out().Write(ros1::kMagic);
   const std::uint64_t header_at = w.out().pos();
   w.out().Write(BagHeader(0, 0, 0));

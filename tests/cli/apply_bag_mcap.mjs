@@ -1,7 +1,7 @@
 // Checks an MCAP file written by `mpcal apply` with Foxglove's own readers
 // (@mcap/core, @foxglove/cdr, not mpcal):
 //
-//   node apply_bag_mcap.mjs PACKAGES_DIR INPUT.mcap OUTPUT.mcap CORRECTED.csv [TOPIC]
+//   node apply_bag_mcap.mjs PACKAGES_DIR INPUT.mcap OUTPUT.mcap CORRECTED.csv [TOPIC [NOISE.json]]
 //
 // PACKAGES_DIR holds node_modules with @mcap/core 2.2.2, @mcap/support 1.1.0
 // (@foxglove/wasm-zstd), @foxglove/cdr 3.5.0 and lz4js 0.2.0, as
@@ -13,12 +13,15 @@
 // its times and sequence; every IMU message with its times, header stamp,
 // frame_id, orientation and covariances as they were and its linear
 // acceleration and angular velocity equal to the row of CORRECTED.csv to
-// 1e-12 relative.
+// 1e-12 relative. With NOISE.json (`apply --noise`) the linear acceleration
+// and angular velocity covariances are instead N² f on the diagonal and 0
+// elsewhere (N the file's white noise per axis, f = (n − 1) / (last − first
+// log time) of the topic's n messages), to 1e-12 relative.
 import { createRequire } from "node:module";
 import fs from "node:fs";
 import path from "node:path";
 
-const [packages, input, output, corrected, topic = "/imu/data"] = process.argv.slice(2);
+const [packages, input, output, corrected, topic = "/imu/data", noise] = process.argv.slice(2);
 const require = createRequire(path.join(packages, "package.json"));
 const { McapStreamReader, McapIndexedReader } = require("@mcap/core");
 const { CdrReader } = require("@foxglove/cdr");
@@ -87,6 +90,19 @@ const want = rows.map((l) => {
 });
 
 const a = readAll(input);
+// The covariances `apply --noise` sets: linear acceleration's 9, then angular velocity's.
+let expectedCov;
+if (noise) {
+  const ids = [...a.channels.values()].filter((c) => c.topic === topic).map((c) => c.id);
+  const times = a.messages.filter((m) => ids.includes(m.channelId)).map((m) => Number(m.logTime));
+  const rate = (times.length - 1) / ((times[times.length - 1] - times[0]) * 1e-9);
+  const d = JSON.parse(fs.readFileSync(noise, "utf8"));
+  const diag = (sensor, key) => {
+    const n = ["x", "y", "z"].map((k) => d[sensor].axes[k][key].value);
+    return [0, 1, 2].flatMap((i) => [0, 1, 2].map((j) => (i === j ? n[i] ** 2 * rate : 0)));
+  };
+  expectedCov = [...diag("accelerometer", "white_noise_mps2_per_rthz"), ...diag("gyroscope", "white_noise_radps_per_rthz")];
+}
 const b = readAll(output);
 if (!b.footer) fail("the output has no footer");
 if (json([...a.schemas.values()]) !== json([...b.schemas.values()])) fail("schemas differ");
@@ -106,7 +122,13 @@ for (let i = 0; i < a.messages.length; i++) {
     continue;
   }
   const [x, y] = [decodeImu(m.data, channel.messageEncoding), decodeImu(n.data, channel.messageEncoding)];
-  if (json([x.stamp, x.frame, x.kept]) !== json([y.stamp, y.frame, y.kept])) {
+  if (expectedCov) {
+    const got = [...y.doubles.slice(28), ...y.doubles.slice(16, 25)];
+    if (json([x.stamp, x.frame, x.doubles.slice(0, 13)]) !== json([y.stamp, y.frame, y.doubles.slice(0, 13)]) ||
+        !got.every((v, k) => close(v, expectedCov[k]))) {
+      fail(`IMU message ${imu}: header or orientation changed, or covariances ${got}, not ${expectedCov}`);
+    }
+  } else if (json([x.stamp, x.frame, x.kept]) !== json([y.stamp, y.frame, y.kept])) {
     fail(`IMU message ${imu}: header, orientation or a covariance changed`);
   }
   if (!y.vectors.every((v, k) => close(v, want[imu][k]))) {

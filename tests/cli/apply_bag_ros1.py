@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Checks a ROS 1 bag written by `mpcal apply` with Debian's rosbag (not mpcal).
 
-  /usr/bin/python3 apply_bag_ros1.py INPUT.bag OUTPUT.bag CORRECTED.csv [TOPIC]
+  /usr/bin/python3 apply_bag_ros1.py INPUT.bag OUTPUT.bag CORRECTED.csv [TOPIC [NOISE.json]]
 
 Opening OUTPUT.bag reads its bag header, connection and chunk info records;
 reading its messages goes through the index data records to each message's
@@ -11,8 +11,13 @@ message of another topic byte for byte as it was, at the same record time;
 every IMU message with its record time, header (seq, stamp, frame_id),
 orientation and the three covariances as they were, and its linear
 acceleration and angular velocity equal to the row of CORRECTED.csv (the same
-rows corrected by `mpcal apply` as a CSV) to 1e-12 relative.
+rows corrected by `mpcal apply` as a CSV) to 1e-12 relative. With NOISE.json
+(`apply --noise`), the linear acceleration and angular velocity covariances
+are instead N**2 * f on the diagonal and 0 elsewhere, to 1e-12 relative: N the
+file's white noise per axis, f = (n - 1) / (last - first record time) of the
+topic's n messages, as rosbag reads them.
 """
+import json
 import csv
 import sys
 
@@ -33,9 +38,24 @@ def topics_of(bag):
     return {name: (t.msg_type, t.message_count) for name, t in info.topics.items()}
 
 
-def main(src, out, corrected, topic="/imu/data"):
+def noise_covariances(noise, bag, topic):
+    """The covariances `apply --noise` sets: {field: 9 values}."""
+    times = [t.to_nsec() for _, _, t in bag.read_messages(topics=[topic])]
+    rate = (len(times) - 1) / ((times[-1] - times[0]) * 1e-9)
+    d = json.load(open(noise))
+    out = {}
+    for sensor, key, field in (
+            ("accelerometer", "white_noise_mps2_per_rthz", "linear_acceleration_covariance"),
+            ("gyroscope", "white_noise_radps_per_rthz", "angular_velocity_covariance")):
+        n = [d[sensor]["axes"][a][key]["value"] for a in "xyz"]
+        out[field] = [n[i] ** 2 * rate if i == j else 0.0 for i in range(3) for j in range(3)]
+    return out
+
+
+def main(src, out, corrected, topic="/imu/data", noise=None):
     rows = list(csv.DictReader(open(corrected, newline="")))
     with rosbag.Bag(src) as bin_, rosbag.Bag(out) as bout:
+        expected_cov = noise_covariances(noise, bin_, topic) if noise else {}
         if topics_of(bin_) != topics_of(bout):
             fail("topics differ: %s vs %s" % (topics_of(bin_), topics_of(bout)))
         md5_in = {c.topic: c.md5sum for c in bin_._connections.values()}
@@ -62,7 +82,11 @@ def main(src, out, corrected, topic="/imu/data"):
                 fail("IMU message %d: header changed" % n_imu)
             for name in ("orientation_covariance", "angular_velocity_covariance",
                          "linear_acceleration_covariance"):
-                if tuple(getattr(m, name)) != tuple(getattr(c, name)):
+                if name in expected_cov:
+                    if not all(close(g, w) for g, w in zip(getattr(c, name), expected_cov[name])):
+                        fail("IMU message %d: %s %s, not %s" % (
+                            n_imu, name, tuple(getattr(c, name)), expected_cov[name]))
+                elif tuple(getattr(m, name)) != tuple(getattr(c, name)):
                     fail("IMU message %d: %s changed" % (n_imu, name))
             if (m.orientation.x, m.orientation.y, m.orientation.z, m.orientation.w) != (
                     c.orientation.x, c.orientation.y, c.orientation.z, c.orientation.w):

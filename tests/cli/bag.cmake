@@ -65,3 +65,7 @@ mpcal_cli_test(apply_bag_ros2_not_written EXIT 1
 mpcal_cli_test(apply_bag_onto_itself EXIT 1
   MATCH "^mpcal: error: .*imu_none\\.bag"
   ARGS apply ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags}/imu_none.bag -o ${_bags}/imu_none.bag)
+mpcal_cli_test(apply_noise_with_a_text_log EXIT 2
+  MATCH "^mpcal: error: --noise: '.*session\\.csv' is a text log, which has no covariances"
+  ABSENT out.csv
+  ARGS apply ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags}/session.csv -o out.csv --noise ${_bags}/session.csv)
