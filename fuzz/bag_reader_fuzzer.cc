@@ -61,7 +61,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   const std::string bytes = rewritten.str();
-  // The one in-memory file now holds the output: the input is read whole.
+  // The one in-memory file takes the output: the input has been read whole.
   const std::string out = mpcal::fuzz::WriteMemoryFile(bytes.data(), bytes.size());
   std::vector<std::string> warnings;
   std::int64_t read_back = 0;
