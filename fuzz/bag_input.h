@@ -1,12 +1,15 @@
 // What the bag fuzz targets share: the recording at `path` inspected, then
-// its /imu/data topic read. Any outcome but success or mpcal::Error is a
+// its /imu/data topic read, then (ROS 1 and MCAP, the kinds `apply` writes)
+// rewritten as `apply` does, and what is written read back whole. Any outcome but success or mpcal::Error is a
 // finding: another exception, a sanitizer report, a timeout or memory beyond
 // the limit (every length is checked against what remains and the caps in
 // bag.h), or a batch that breaks the sink's contract.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -56,6 +59,39 @@ inline void ReadBagChecked(const std::string& path,
     Check(messages <= max_messages, "no more messages than the input can hold");
   } catch (const mpcal::Error&) {
   }
+}
+
+/// Walks the recording at `path` as `apply` does (RewriteImuMessages, every
+/// IMU message edited); what it writes must read back whole: every message it
+/// edited, with no warning.
+inline void RewriteChecked(const std::string& path) {
+  std::stringstream rewritten;
+  mpcal::BagRewriteResult written;
+  try {
+    std::vector<std::string> warnings;
+    written = mpcal::RewriteImuMessages(
+        path,
+        rewritten,
+        "/imu/data",
+        [](mpcal::ImuMessage& m) { m.linear_acceleration_mps2.x() += 1.0; },
+        warnings);
+  } catch (const mpcal::Error&) {
+    return;
+  }
+  const std::string bytes = rewritten.str();
+  // The one in-memory file takes the output: the input has been read whole.
+  const std::string out = WriteMemoryFile(bytes.data(), bytes.size());
+  std::vector<std::string> warnings;
+  std::int64_t read_back = 0;
+  mpcal::ReadImuMessages(
+      out,
+      "/imu/data",
+      [&](std::span<const mpcal::ImuMessage> batch) {
+        read_back += static_cast<std::int64_t>(batch.size());
+      },
+      warnings);
+  Check(read_back == written.imu_messages, "the rewritten messages read back");
+  Check(warnings.empty() || written.imu_messages == 0, "the rewritten file is whole");
 }
 
 }  // namespace mpcal::fuzz

@@ -1,7 +1,8 @@
 // libFuzzer target for the MCAP reader. The input is the file (with the
 // magic put in front when it lacks it), written to an in-memory file opened
 // by its /proc path, so the reader runs exactly as on a file from disk; it is
-// inspected, then its /imu/data topic read.
+// inspected, its /imu/data topic read, then rewritten as `apply` does and
+// read back.
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
@@ -12,5 +13,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string path =
       mpcal::fuzz::WriteWithMagic(std::string_view("\x89MCAP0\r\n", 8), data, size);
   mpcal::fuzz::ReadBagChecked(path);
+  mpcal::fuzz::RewriteChecked(path);
   return 0;
 }

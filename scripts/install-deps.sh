@@ -40,6 +40,8 @@ develop=(
   time                 # GNU time: peak memory and CPU in the benches (bench/speed_bench.sh)
   python3-numpy        # bench/independent generators (gen_imu_session.py, gen_still.py)
   python3-jsonschema   # tests/io/schema_test.py: the written files against docs/schemas/
+  python3-rosbag python3-roslz4  # ROS 1 bags written by apply, read by rosbag (tests/cli/apply_bag_ros1.py)
+  nodejs               # MCAP files written by apply, read by @mcap/core from npm (tests/cli/apply_bag_mcap.mjs)
   clang                # libFuzzer targets (make fuzz)
   clang-format         # the code's layout, checked by scripts/lint.sh (.ci/run)
   clang-tidy           # bug-prone patterns and function size, scripts/lint.sh

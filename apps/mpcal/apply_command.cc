@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "calibration_table.h"
 #include "cli_options.h"
@@ -15,9 +16,11 @@
 #include "explain_apply.h"
 #include "mpcal/apply.h"
 #include "mpcal/atomic_file.h"
+#include "mpcal/bag.h"
 #include "mpcal/calibration_file.h"
 #include "mpcal/count.h"
 #include "mpcal/error.h"
+#include "mpcal/noise_file.h"
 #include "progress.h"
 
 namespace mpcal::cli {
@@ -30,6 +33,7 @@ struct ApplyFlags {
   ApplyOptions options;
   std::optional<AccelUnits> out_units;
   std::optional<GyroUnits> out_gyro_units;
+  std::string noise;
 };
 
 // A file whose gyroscope block says rad/s while the command line it records
@@ -144,7 +148,150 @@ void PrintSummary(const ApplyFlags& flags,
   fmt::print(")\n");
 }
 
+// The extension a recording of `format` is written under.
+std::string_view ExtensionOf(BagFormat format) {
+  return format == BagFormat::kRos1 ? ".bag" : format == BagFormat::kMcap ? ".mcap" : "";
+}
+
+// The white noise density of each axis of a noise analysis's sensor; empty
+// when an axis has none measured.
+std::optional<Eigen::Vector3d> WhiteNoiseOf(const SensorNoise& sensor) {
+  Eigen::Vector3d n;
+  for (int i = 0; i < 3; ++i) {
+    const auto& value =
+        sensor.axes[static_cast<std::size_t>(i)].term(NoiseTerm::kWhiteNoise).value;
+    if (!value) return std::nullopt;
+    n[i] = *value;
+  }
+  return n;
+}
+
+void SetWhiteNoise(const std::string& path, BagApplyOptions& options) {
+  const NoiseFile noise = ReadNoiseFile(path);
+  options.accel_white_noise_mps2_per_rthz = WhiteNoiseOf(noise.result.accel_mps2);
+  if (!options.accel_white_noise_mps2_per_rthz) {
+    throw Error(ErrorKind::kInput,
+                fmt::format("'{}': the accelerometer's white noise is not measured on "
+                            "every axis, so the covariances cannot be set from it",
+                            path));
+  }
+  if (noise.result.gyro_radps) {
+    options.gyro_white_noise_radps_per_rthz = WhiteNoiseOf(*noise.result.gyro_radps);
+  }
+}
+
+// The one line that says whose covariances the messages carry.
+void PrintCovariances(const ApplyFlags& flags, const BagApplyResult& result) {
+  if (!result.covariance_rate_hz) {
+    fmt::print(stderr,
+               "mpcal: the covariances are the input's, copied as they are (the "
+               "calibration removes systematic errors, not the noise the driver "
+               "states)\n");
+    return;
+  }
+  const auto diagonal = [](const Eigen::Vector3d& v) {
+    return fmt::format("{:.4g}, {:.4g}, {:.4g}", v.x(), v.y(), v.z());
+  };
+  fmt::print(stderr,
+             "mpcal: the covariances are set from '{}' as N²·f at {:.6g} Hz: linear "
+             "acceleration diagonal {} (m/s²)²{}\n",
+             flags.noise,
+             *result.covariance_rate_hz,
+             diagonal(*result.covariances.linear_acceleration_m2ps4),
+             result.covariances.angular_velocity_rad2ps2
+                 ? fmt::format(", angular velocity diagonal {} (rad/s)²",
+                               diagonal(*result.covariances.angular_velocity_rad2ps2))
+                 : std::string("; the angular velocity's are the input's (the file has "
+                               "no gyroscope white noise)"));
+}
+
+// A recording corrected into a recording of its own kind. Its messages are
+// in m/s² and rad/s in and out, so the flags that say how a text log is
+// read or written have nothing to act on.
+void RunApplyBag(const CLI::App& cmd, const ApplyFlags& flags) {
+  for (const std::string& name : {std::string(FlagName(Option::kLogColumns)),
+                                  std::string(FlagName(Option::kLogUnits)),
+                                  std::string(FlagName(Option::kLogGyroUnits)),
+                                  std::string(FlagName(Option::kLogTimeUnit)),
+                                  std::string(FlagName(Option::kLogRate)),
+                                  std::string("--out-units"),
+                                  std::string("--out-gyro-units")}) {
+    if (cmd.count(name) > 0) {
+      throw CLI::ValidationError(
+          name,
+          fmt::format(
+              "'{}' is a recording, read and written in m/s² and rad/s; {} is for "
+              "text logs",
+              flags.input,
+              name));
+    }
+  }
+  const BagFormat format = DetectBagFormat(flags.input);
+  const std::string_view extension = ExtensionOf(format);
+  if (extension.empty()) {
+    throw Error(ErrorKind::kInput,
+                fmt::format("'{}' is a ROS 2 bag, which is read but not written; apply "
+                            "the calibration to a ROS 1 bag or an MCAP file",
+                            flags.input));
+  }
+  if (!flags.output.ends_with(extension)) {
+    throw CLI::ValidationError(
+        "--output",
+        fmt::format("'{}' is {} and is corrected into one: name the output '*{}'",
+                    flags.input,
+                    format == BagFormat::kRos1 ? "a ROS 1 bag" : "an MCAP file",
+                    extension));
+  }
+  CheckOutput(flags.output, {flags.calibration, flags.input, flags.noise});
+  const Calibration calibration = ReadCalibrationFile(flags.calibration);
+  BagApplyOptions options;
+  options.topic = flags.options.log.topic;
+  if (!flags.noise.empty()) SetWhiteNoise(flags.noise, options);
+  const BagApplyResult result =
+      ApplyCalibrationToBag(calibration, flags.input, flags.output, options);
+  PrintWarnings(result.warnings);
+  if (result.unmeasured_messages > 0) {
+    PrintWarnings({fmt::format(
+        "{} on '{}' mark the linear acceleration as not measured and are copied as they "
+        "are",
+        Count(static_cast<std::size_t>(result.unmeasured_messages), "message"),
+        result.topic)});
+  }
+  // A recording states its units (m/s², REP 103): no flag would change them.
+  if (result.rest_mismatch) {
+    PrintWarnings({result.rest_mismatch->what +
+                   "; is it the calibrated sensor, and does its driver publish m/s²?"});
+  }
+  PrintCovariances(flags, result);
+  fmt::print(
+      "corrected {} on '{}' of '{}' into '{}' (linear acceleration{}; {} of other "
+      "topics copied; chunks {}",
+      Count(static_cast<std::size_t>(result.corrected_messages), "message"),
+      result.topic,
+      flags.input,
+      flags.output,
+      result.gyro_corrected ? " and angular velocity" : "",
+      Count(static_cast<std::size_t>(result.other_messages), "message"),
+      result.compressions.empty()
+          ? std::string("none")
+          : fmt::format("{}", fmt::join(result.compressions, ", ")));
+  if (result.rest_magnitude_mps2) {
+    fmt::print("; |a| at rest {:.5f} m/s², gravity {:.5f} m/s²",
+               *result.rest_magnitude_mps2,
+               calibration.gravity_mps2);
+  }
+  fmt::print(")\n");
+}
+
 void RunApply(const CLI::App& cmd, const ApplyFlags& flags) {
+  if (IsBag(flags.input)) return RunApplyBag(cmd, flags);
+  if (!flags.noise.empty()) {
+    throw CLI::ValidationError(
+        "--noise",
+        fmt::format("'{}' is a text log, which has no covariances: the noise analysis "
+                    "sets those of a ROS 1 bag or an MCAP file",
+                    flags.input));
+  }
   if (flags.calibration == "-" && flags.input == "-") {
     throw Error("the calibration file and the log cannot both be standard input ('-')");
   }
@@ -217,18 +364,29 @@ void AddApplyCommand(CLI::App& root) {
          "(default: the log's units; rad/s for a log in counts)")
       ->transform(OneOf(out_gyro_units))
       ->group("Output");
+  cmd->add_option("--noise",
+                  flags->noise,
+                  "Noise analysis (JSON of 'mpcal noise --json'): the covariances of a "
+                  "corrected recording's vectors set to N²·f per axis (f the topic's "
+                  "message rate); default: the recording's own kept")
+      ->check(InputPath)
+      ->group("Output");
   cmd->footer(
       "Example:\n"
       "  mpcal apply calib.json session.csv -o corrected.csv\n"
       "  logger | mpcal apply calib.json - -o - --out-units g | plot\n"
       "  mpcal apply imu.json imu_session.csv -o corrected.csv --out-gyro-units dps\n"
+      "  mpcal apply imu.json drive.bag -o drive_corrected.bag --topic /imu/data\n"
       "The log is read with the calibration's units unless --units is given (and its\n"
       "gyroscope in the calibration's units unless --gyro-units is given), and with "
       "the\n"
       "columns, time unit and rate the calibration was made with unless --columns,\n"
       "--time-unit or --rate is given; a log whose magnitude at rest is far from the\n"
       "calibration's gravity gets a warning. With --out-units g, unit labels in the\n"
-      "header's accelerometer names follow ('(m/s^2)' becomes '(g)').");
+      "header's accelerometer names follow ('(m/s^2)' becomes '(g)').\n"
+      "A ROS 1 bag or an MCAP file is corrected into a recording of its kind (the\n"
+      "output named *.bag or *.mcap): the sensor_msgs/Imu messages of the topic\n"
+      "corrected, their covariances and every other topic copied as they are.");
   cmd->callback([cmd, flags] { RunApply(*cmd, *flags); });
 }
 

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include <Eigen/Core>
 
 #include "mpcal/advice.h"
+#include "mpcal/bag.h"
 #include "mpcal/calibration.h"
 #include "mpcal/log_reader.h"
 #include "mpcal/units.h"
@@ -173,5 +175,61 @@ ApplyResult ApplyCalibration(const Calibration& calibration,
                              const std::string& input,
                              const std::string& output,
                              const ApplyOptions& options);
+
+/// How a recording is corrected (ApplyCalibrationToBag).
+struct BagApplyOptions {
+  /// The sensor_msgs/Imu topic to correct; empty: the recording's only one.
+  std::string topic;
+  /// As ApplyOptions::rest_tolerance.
+  double rest_tolerance = 0.05;
+  /// White noise densities N per axis (a noise analysis's): when given, the
+  /// covariance of each corrected vector is set to the variance of one
+  /// sample, N²·f on the diagonal (f the topic's message rate, Hz), 0
+  /// elsewhere; empty: the message's own covariance kept.
+  std::optional<Eigen::Vector3d> accel_white_noise_mps2_per_rthz;
+  std::optional<Eigen::Vector3d> gyro_white_noise_radps_per_rthz;
+};
+
+struct BagApplyResult {
+  BagFormat format = BagFormat::kRos1;
+  std::string topic;
+  /// Messages of the topic corrected, and those left as they were because
+  /// they mark the linear acceleration as not measured.
+  std::int64_t corrected_messages = 0;
+  std::int64_t unmeasured_messages = 0;
+  /// Messages of the other topics, copied.
+  std::int64_t other_messages = 0;
+  /// Whether the angular velocity was corrected too (a calibration with a
+  /// gyroscope, messages that measure it).
+  bool gyro_corrected = false;
+  /// The covariances written (BagApplyOptions' white noise), and the
+  /// message rate they were set for; empty when the messages' own are kept.
+  ImuCovariances covariances;
+  std::optional<double> covariance_rate_hz;
+  /// Chunk compressions written, as the input's.
+  std::vector<std::string> compressions;
+  std::optional<double> rest_magnitude_mps2;
+  std::optional<RestMismatch> rest_mismatch;
+  std::vector<std::string> warnings;
+};
+
+/// Corrects the sensor_msgs/Imu messages of a ROS 1 bag or an MCAP file into
+/// `output`, a recording of the same kind written whole or not at all
+/// (RewriteImuMessages in bag.h says what is copied): the linear
+/// acceleration by the accelerometer's model (m/s² in, m/s² out, as
+/// ApplyCalibration with a log in m/s²), the angular velocity by the
+/// gyroscope's when the calibration has one (rad/s in and out). The
+/// covariances are the input's (the calibration removes systematic errors
+/// and leaves the noise the driver states as it was), or set from the white
+/// noise given (BagApplyOptions).
+/// \throws mpcal::Error for a calibration in counts (a recording is in m/s²
+///   and rad/s), `output` naming the input, no sensor_msgs/Imu topic or
+///   several with none chosen, a topic with no message (or, with a white
+///   noise given, fewer than 2 or no time between its first and last), and as
+///   RewriteImuMessages; no output file is then left.
+BagApplyResult ApplyCalibrationToBag(const Calibration& calibration,
+                                     const std::string& input,
+                                     const std::string& output,
+                                     const BagApplyOptions& options);
 
 }  // namespace mpcal

@@ -29,6 +29,8 @@ void WriteFileAtomically(const std::string& path, const std::string& content);
 
 /// Streams into `path` atomically: `write` gets an ostream; the file appears
 /// only if `write` returns without throwing and every byte reached the disk.
+/// The ostream of a file seeks (seekp), for a writer that completes a header
+/// at the end; that of a pipe or a terminal fails to.
 /// \throws mpcal::Error on I/O failure; rethrows what `write` throws (and
 ///   removes the temporary file).
 void WriteStreamAtomically(const std::string& path,

@@ -13,6 +13,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <iosfwd>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -115,5 +117,55 @@ void ReadImuMessages(const std::string& path,
                      const std::string& topic,
                      const ImuSink& sink,
                      std::vector<std::string>& warnings);
+
+/// Changes one message's two vectors (linear_acceleration_mps2,
+/// angular_velocity_radps); whatever else it changes is not written.
+using ImuEdit = std::function<void(ImuMessage&)>;
+
+/// Covariance diagonals RewriteImuMessages writes into each message it
+/// edits, for each vector the message measures (the 3×3 covariance's other
+/// elements set to 0); empty: the message's own kept.
+struct ImuCovariances {
+  std::optional<Eigen::Vector3d> linear_acceleration_m2ps4;
+  std::optional<Eigen::Vector3d> angular_velocity_rad2ps2;
+};
+
+/// What RewriteImuMessages wrote.
+struct BagRewriteResult {
+  BagFormat format = BagFormat::kRos1;
+  /// sensor_msgs/Imu messages of the topic, each passed to the edit.
+  std::int64_t imu_messages = 0;
+  /// Messages of every other topic, copied as they were.
+  std::int64_t other_messages = 0;
+  /// Chunk compressions written (each chunk keeps its own), each once.
+  std::vector<std::string> compressions;
+};
+
+/// Copies the recording at `input` (a ROS 1 bag or an MCAP file) into
+/// `output` as a recording of the same kind: every record of another topic and every
+/// connection, schema and channel record byte for byte, each chunk with its own
+/// compression, the index (ROS 1 index data and chunk info records, MCAP
+/// message indexes and summary) made afresh for the file written. Each
+/// sensor_msgs/Imu message on `topic` is decoded, given to `edit`, and its two
+/// vectors written back in place in the message's own serialisation (ROS 1
+/// or CDR, its byte order), with the covariance diagonals `covariances`
+/// gives; its header, orientation and the other covariances stay as they
+/// were. A vector the message marks as not measured
+/// (covariance starting with −1) is written back unchanged. Memory is a few
+/// chunks and one small entry per chunk, whatever the recording's length.
+/// ROS 1 bags are written as Debian's rosbag (bag.py) writes them: the bag
+/// header record completed at the end, so `output` must seek (a file, as
+/// WriteStreamAtomically gives it).
+/// \throws mpcal::Error as ReadImuMessages for the input, for a ROS 2 bag
+///   (not written), and for an output that does not seek or fails. Bytes
+///   may have been written before a throw: give a stream whose file is
+///   dropped then (WriteStreamAtomically). Exceptions thrown by `edit` pass
+///   through.
+BagRewriteResult RewriteImuMessages(const std::string& input,
+                                    std::ostream& output,
+                                    const std::string& topic,
+                                    const ImuEdit& edit,
+                                    std::vector<std::string>& warnings,
+                                    const ImuCovariances& covariances = {});
 
 }  // namespace mpcal

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "bag/bag_io.h"
+#include "bag/bag_write.h"
 #include "bag/mcap_bag.h"
 #include "bag/mcap_records.h"
 #include "bag/ros1_bag.h"
@@ -109,6 +110,26 @@ void ReadImuMessages(const std::string& path,
     case BagFormat::kRos2Sqlite:
       return bag::ReadRos2Imu(path, topic, sink, warnings);
   }
+}
+
+BagRewriteResult RewriteImuMessages(const std::string& input,
+                                    std::ostream& output,
+                                    const std::string& topic,
+                                    const ImuEdit& edit,
+                                    std::vector<std::string>& warnings,
+                                    const ImuCovariances& covariances) {
+  switch (DetectBagFormat(input)) {
+    case BagFormat::kRos1:
+      return bag::RewriteRos1(input, output, topic, edit, covariances, warnings);
+    case BagFormat::kMcap:
+      return bag::RewriteMcap(input, output, topic, edit, covariances, warnings);
+    case BagFormat::kRos2Sqlite:
+      break;
+  }
+  throw Error(ErrorKind::kInput,
+              input +
+                  ": a ROS 2 bag is read but not written; a ROS 1 bag or an MCAP file "
+                  "can be (ros2 bag convert makes an MCAP file of it)");
 }
 
 }  // namespace mpcal

@@ -67,6 +67,22 @@ class FdStreambuf : public std::streambuf {
 
   int sync() override { return Flush() ? 0 : -1; }
 
+  // A writer that completes a header at the end (a ROS 1 bag's) seeks back;
+  // on a pipe or a terminal lseek(2) fails and so does the seek.
+  pos_type seekoff(off_type off,
+                   std::ios_base::seekdir dir,
+                   std::ios_base::openmode which) override {
+    if ((which & std::ios_base::out) == 0 || !Flush()) return pos_type(off_type(-1));
+    const int whence = dir == std::ios_base::beg   ? SEEK_SET
+                       : dir == std::ios_base::cur ? SEEK_CUR
+                                                   : SEEK_END;
+    const off_t at = ::lseek(fd_, static_cast<off_t>(off), whence);
+    return at < 0 ? pos_type(off_type(-1)) : pos_type(static_cast<off_type>(at));
+  }
+  pos_type seekpos(pos_type pos, std::ios_base::openmode which) override {
+    return seekoff(off_type(pos), std::ios_base::beg, which);
+  }
+
  private:
   bool Flush() {
     const std::size_t n = static_cast<std::size_t>(pptr() - pbase());

@@ -27,3 +27,45 @@ mpcal_cli_test(bag_topic_of_another_type EXIT 1
 mpcal_cli_test(bag_with_text_log_units EXIT 1
   MATCH "^mpcal: error: .*imu_cdr_zstd\\.mcap: a recording's sensor_msgs/Imu has its own units"
   ARGS detect ${_bags}/imu_cdr_zstd.mcap --units g)
+
+# apply on a recording writes a recording of its kind, read back by the
+# other tool's own reader (tests/cli/apply_bag.sh). @mcap/core's packages are
+# where tests/data/bags/make_mcap.mjs installs them unless told.
+set(MPCAL_MCAP_PACKAGES "/tmp/mcapgen" CACHE PATH
+  "A directory whose node_modules holds @mcap/core 2.2.2, @mcap/support 1.1.0, @foxglove/cdr 3.5.0 and lz4js 0.2.0")
+foreach(fixture IN ITEMS imu_none.bag imu_bz2.bag imu_lz4.bag imu_cdr_zstd.mcap
+                         imu_cdr_be_lz4.mcap imu_ros1.mcap imu_cdr_plain.mcap)
+  string(REPLACE "." "_" _name ${fixture})
+  add_test(NAME cli.apply_bag_${_name}
+    COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/apply_bag.sh $<TARGET_FILE:mpcal_cli>
+            ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags} ${fixture} ${MPCAL_MCAP_PACKAGES}
+    WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+  set_tests_properties(cli.apply_bag_${_name} PROPERTIES LABELS cli SKIP_RETURN_CODE 77)
+endforeach()
+
+mpcal_cli_test(apply_bag_output_of_another_kind EXIT 2
+  MATCH "^mpcal: error: --output: '.*imu_lz4\\.bag' is a ROS 1 bag and is corrected into one: name the output '\\*\\.bag'"
+  ABSENT out.mcap
+  ARGS apply ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags}/imu_lz4.bag -o out.mcap)
+mpcal_cli_test(apply_bag_text_log_flag EXIT 2
+  MATCH "^mpcal: error: --out-units: '.*imu_cdr_zstd\\.mcap' is a recording, read and written in m/s² and rad/s"
+  ABSENT out.mcap
+  ARGS apply ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags}/imu_cdr_zstd.mcap -o out.mcap --out-units g)
+mpcal_cli_test(apply_bag_topic_of_another_type EXIT 1
+  MATCH "^mpcal: error: .*imu_none\\.bag: topic '/chatter' is of type std_msgs/String"
+  ABSENT out.bag
+  ARGS apply ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags}/imu_none.bag -o out.bag --topic /chatter)
+mpcal_cli_test(apply_bag_absent_topic EXIT 1
+  MATCH "^mpcal: error: .*imu_ros1\\.mcap: no topic '/imu'; the file holds /chatter \\(std_msgs/String\\), /imu/data \\(sensor_msgs/Imu\\)"
+  ABSENT out.mcap
+  ARGS apply ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags}/imu_ros1.mcap -o out.mcap --topic /imu)
+mpcal_cli_test(apply_bag_ros2_not_written EXIT 1
+  MATCH "^mpcal: error: '.*imu_ros2' is a ROS 2 bag, which is read but not written"
+  ARGS apply ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags}/imu_ros2 -o out.db3)
+mpcal_cli_test(apply_bag_onto_itself EXIT 1
+  MATCH "^mpcal: error: .*imu_none\\.bag"
+  ARGS apply ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags}/imu_none.bag -o ${_bags}/imu_none.bag)
+mpcal_cli_test(apply_noise_with_a_text_log EXIT 2
+  MATCH "^mpcal: error: --noise: '.*session\\.csv' is a text log, which has no covariances"
+  ABSENT out.csv
+  ARGS apply ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags}/session.csv -o out.csv --noise ${_bags}/session.csv)
