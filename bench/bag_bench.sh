@@ -73,13 +73,8 @@ make_file "$cache/camera_lz4.bag" "$rosbag_python" "$ros1" "$csv" \
   "$cache/camera_lz4.bag.tmp" --compression lz4 --camera
 make_file "$cache/camera_none.bag" "$rosbag_python" "$ros1" "$csv" \
   "$cache/camera_none.bag.tmp" --compression none --camera
-# MCAP: Foxglove's packages installed beside the recordings (npm), once.
-node_dir=$cache/node
-if [ ! -d "$node_dir/node_modules/@mcap/core" ] && command -v npm >/dev/null; then
-  mkdir -p "$node_dir"
-  (cd "$node_dir" && npm install --silent --no-audit --no-fund @mcap/core@2.2.2 \
-    @foxglove/cdr@3.5.0 lz4js@0.2.0 >/dev/null 2>&1) || true
-fi
+# MCAP: Foxglove's packages where scripts/install-deps.sh installs them.
+node_dir=$here/../tests/tools
 files=(imu_lz4.bag camera_lz4.bag camera_none.bag)
 if [ ! -d "$cache/camera_ros2" ]; then
   echo "writing camera_ros2/ ..."

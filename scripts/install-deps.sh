@@ -41,7 +41,7 @@ develop=(
   python3-numpy        # bench/independent generators (gen_imu_session.py, gen_still.py)
   python3-jsonschema   # tests/io/schema_test.py: the written files against docs/schemas/
   python3-rosbag python3-roslz4  # ROS 1 bags written by apply, read by rosbag (tests/cli/apply_bag_ros1.py)
-  nodejs               # MCAP files written by apply, read by @mcap/core from npm (tests/cli/apply_bag_mcap.mjs)
+  nodejs               # MCAP files written and read by @mcap/core from npm (tests/tools/)
   clang                # libFuzzer targets (make fuzz)
   clang-format         # the code's layout, checked by scripts/lint.sh (.ci/run)
   clang-tidy           # bug-prone patterns and function size, scripts/lint.sh
@@ -66,7 +66,24 @@ for p in "${packages[@]}"; do
   fi
 done
 
+# The test tools Debian lacks, from the npm registry at the versions
+# tests/tools/package-lock.json pins (an MCAP writer and reader that are not
+# mpcal's): with `all` only.
+install_test_tools() {
+  [ "${1:-all}" = all ] || return 0
+  local tools
+  tools="$(cd "$(dirname "$0")/.." && pwd)/tests/tools"
+  [ -d "$tools/node_modules/@mcap/core" ] && return 0
+  if ! command -v npm >/dev/null; then
+    echo "mpcal: npm not found: the MCAP tests need tests/tools (run npm ci there)" >&2
+    return 1
+  fi
+  echo "mpcal: installing the test tools in tests/tools (npm ci)" >&2
+  npm ci --prefix "$tools" --no-audit --no-fund --silent
+}
+
 if [ ${#missing[@]} -eq 0 ]; then
+  install_test_tools "${1:-all}"
   exit 0
 fi
 
@@ -80,3 +97,4 @@ echo "mpcal: installing ${missing[*]}" >&2
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq
 "${cmd[@]}"
+install_test_tools "${1:-all}"

@@ -30,8 +30,8 @@ mpcal_cli_test(bag_with_text_log_units EXIT 1
 
 # apply on a recording writes a recording of its kind, read back by the
 # other tool's own reader (tests/cli/apply_bag.sh). @mcap/core's packages are
-# where tests/data/bags/make_mcap.mjs installs them unless told.
-set(MPCAL_MCAP_PACKAGES "/tmp/mcapgen" CACHE PATH
+# in tests/tools (scripts/install-deps.sh installs them) unless told.
+set(MPCAL_MCAP_PACKAGES "${PROJECT_SOURCE_DIR}/tests/tools" CACHE PATH
   "A directory whose node_modules holds @mcap/core 2.2.2, @mcap/support 1.1.0, @foxglove/cdr 3.5.0 and lz4js 0.2.0")
 foreach(fixture IN ITEMS imu_none.bag imu_bz2.bag imu_lz4.bag imu_cdr_zstd.mcap
                          imu_cdr_be_lz4.mcap imu_ros1.mcap imu_cdr_plain.mcap)

@@ -1,10 +1,9 @@
 // Writes the MCAP test files from session.csv with Foxglove's own writer
-// (@mcap/core), compressors and CDR encoder (not mpcal). Run it from a
-// scratch directory where the packages are installed, outside the repository:
+// (@mcap/core), compressors and CDR encoder (not mpcal). Run it from the
+// directory where scripts/install-deps.sh installs them (tests/tools, npm ci
+// at the versions its package-lock.json pins):
 //
-//   mkdir /tmp/mcapgen && cd /tmp/mcapgen
-//   npm install @mcap/core@2.2.2 @mcap/support@1.1.0 @foxglove/cdr@3.5.0 lz4js@0.2.0
-//   node /path/to/tests/data/bags/make_mcap.mjs /path/to/tests/data/bags
+//   cd tests/tools && node ../data/bags/make_mcap.mjs ../data/bags
 //
 // Each CSV row (t in s, ax ay az in m/s2, gx gy gz in rad/s) becomes one
 // sensor_msgs Imu message on /imu/data, as make_ros1_bags.py writes them:
