@@ -39,6 +39,7 @@ develop=(
   time                 # GNU time: peak memory and CPU in the benches (bench/speed_bench.sh)
   python3-numpy        # bench/independent generators (gen_imu_session.py, gen_still.py)
   python3-jsonschema   # tests/io/schema_test.py: the written files against docs/schemas/
+  python3-rosbag python3-sensor-msgs python3-roslz4  # tests/data/bags/make_ros1_shuffled.py: bags written out of order in cli tests
   clang                # libFuzzer targets (make fuzz)
   clang-format         # the code's layout, checked by scripts/lint.sh (.ci/run)
   clang-tidy           # bug-prone patterns and function size, scripts/lint.sh
