@@ -75,6 +75,13 @@ namespace {
                   "measured)");
 }
 
+// Two int64 ns times whose difference overflows are not times.
+[[noreturn]] void ThrowTimesApart(const std::string& path, const std::string& topic) {
+  throw Error(ErrorKind::kTime,
+              path + ": topic '" + topic +
+                  "' has message times more than 292 years apart: not times");
+}
+
 // The messages of the topic as rows, in file order: time in ns from the
 // first message's (exact in a double up to 2^53 ns, 104 days; sorting does
 // not need more), the readings as they are.
@@ -103,9 +110,7 @@ HeldRows ReadMessages(const std::string& path,
           }
           std::int64_t offset_ns = 0;
           if (__builtin_sub_overflow(t_ns, first_ns, &offset_ns)) {
-            throw Error(ErrorKind::kTime,
-                        path + ": topic '" + topic +
-                            "' has message times more than 292 years apart: not times");
+            ThrowTimesApart(path, topic);
           }
           held.rows.time.push_back(static_cast<double>(offset_ns));
           held.rows.accel.push_back(m.linear_acceleration_mps2);
