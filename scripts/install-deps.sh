@@ -40,7 +40,7 @@ develop=(
   time                 # GNU time: peak memory and CPU in the benches (bench/speed_bench.sh)
   python3-numpy        # bench/independent generators (gen_imu_session.py, gen_still.py)
   python3-jsonschema   # tests/io/schema_test.py: the written files against docs/schemas/
-  python3-rosbag python3-roslz4  # ROS 1 bags written by apply, read by rosbag (tests/cli/apply_bag_ros1.py)
+  python3-rosbag python3-sensor-msgs python3-roslz4  # ROS 1 bags by rosbag: written out of order (make_ros1_shuffled.py), read back after apply (apply_bag_ros1.py)
   nodejs               # MCAP files written and read by @mcap/core from npm (tests/tools/)
   clang                # libFuzzer targets (make fuzz)
   clang-format         # the code's layout, checked by scripts/lint.sh (.ci/run)

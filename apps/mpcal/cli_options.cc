@@ -119,6 +119,16 @@ void AddLogOptions(CLI::App& app, LogOptions& options, const CountsHelp& counts)
                  "The sensor_msgs/Imu topic when the input is a ROS 1 bag, an MCAP file "
                  "or a ROS 2 bag directory; default: its only IMU topic")
       ->group("Input log");
+  const std::vector<std::pair<std::string, RecordingTime>> times{
+      {"header", RecordingTime::kHeader}, {"receive", RecordingTime::kReceive}};
+  app.add_option(std::string(FlagName(Option::kLogRecordingTime)),
+                 options.recording_time,
+                 "A recording's message time: header (the header stamp) or receive "
+                 "(when the recorder received it); messages out of order are sorted "
+                 "and counted")
+      ->transform(OneOf(times))
+      ->default_str("header")
+      ->group("Input log");
 }
 
 void AddGyroLogOptions(CLI::App& app, GyroLogFlags& flags) {

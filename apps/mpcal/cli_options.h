@@ -28,7 +28,7 @@ inline constexpr CountsHelp kCalibrateCounts{
     "raw ADC; offset and scale found from the positions",
     "raw ADC; zero measured at every position, scale found from the turns"};
 
-/// --columns, --units, --time-unit, --rate, --gyro-units, --topic.
+/// --columns, --units, --time-unit, --rate, --gyro-units, --topic, --time.
 void AddLogOptions(CLI::App& app,
                    LogOptions& options,
                    const CountsHelp& counts = kCalibrateCounts);

@@ -26,5 +26,6 @@ void AddSimulateNoiseCommand(CLI::App& simulate);
 void AddReportCommand(CLI::App& root);
 void AddDemoCommand(CLI::App& root);
 void AddNoiseCommand(CLI::App& root);
+void AddInspectCommand(CLI::App& root);
 
 }  // namespace mpcal::cli

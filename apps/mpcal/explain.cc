@@ -25,6 +25,7 @@ constexpr std::array kFlags{
     FlagSpelling{Option::kLogRate, "--rate", "HZ"},
     FlagSpelling{Option::kLogGyroUnits, "--gyro-units", "UNITS"},
     FlagSpelling{Option::kLogTopic, "--topic", "TOPIC"},
+    FlagSpelling{Option::kLogRecordingTime, "--time", "TIME"},
     FlagSpelling{Option::kGyroLog, "--gyro-log", "FILE"},
     FlagSpelling{Option::kGyroLogColumns, "--gyro-columns", "t=..,gx=..,gy=..,gz=.."},
     FlagSpelling{Option::kGravity, "--gravity", "MPS2"},

@@ -137,6 +137,7 @@ int Run(int argc, char** argv) {
   mpcal::cli::AddReportCommand(app);
   mpcal::cli::AddDemoCommand(app);
   mpcal::cli::AddNoiseCommand(app);
+  mpcal::cli::AddInspectCommand(app);
 
   // Bare `mpcal`: the help, then the error; an unknown word: say so. (CLI11
   // says "A subcommand is required" to both.)

@@ -25,6 +25,7 @@ enum class Option {
   kLogRate,             ///< LogOptions::rate_hz
   kLogGyroUnits,        ///< LogOptions::gyro_in_dps / gyro_in_counts
   kLogTopic,            ///< LogOptions::topic (a ROS bag or MCAP file)
+  kLogRecordingTime,    ///< LogOptions::recording_time (a ROS bag or MCAP file)
   kGyroLog,             ///< the gyroscope's own log (gyro_log.h: ReadGyroLog's path)
   kGyroLogColumns,      ///< LogOptions::columns of the gyroscope's own log
   kGravity,             ///< the gravity magnitude (CalibrateOptions::solve.gravity_mps2)

@@ -13,11 +13,15 @@
 ///
 /// A recording (a ROS 1 bag, an MCAP file, a ROS 2 bag directory: bag.h) is
 /// read as a log by ReadLog and ReadLogRows: each sensor_msgs/Imu message of
-/// LogOptions::topic is a row, its time the header stamp in seconds from the
-/// first message's, the accelerometer in m/s² and the gyroscope in rad/s as
-/// ROS defines them (no gyroscope when the first message marks its angular
-/// velocity as not measured: covariance[0] = -1); the rules on time order, duplicates and
-/// gaps are the text logs' (a "line" is then a message, counted from 1).
+/// LogOptions::topic is a row, its time the header stamp (or the receive time:
+/// LogOptions::recording_time) in seconds from the earliest message's, the
+/// accelerometer in m/s² and the gyroscope in rad/s as ROS defines them (no
+/// gyroscope when the first message marks its angular velocity as not
+/// measured: covariance[0] = -1). A recording's messages are held and put
+/// in time order, one kept per time (Recording::stamp_order counts what
+/// that changed), so times that go back are not an error there; gaps are
+/// reported as for a text log. Held: about 56 bytes a message, also for
+/// ReadLogRows, which then hands the sorted rows over in pieces.
 ///
 /// Three entry points: ReadLog reads a whole log into a Recording (for
 /// calibration); ReadLogRows reads it the same way but hands the rows over
@@ -59,6 +63,14 @@ std::string_view ToString(TimeUnit unit);
 /// Inverse of ToString (also "µs"); std::nullopt for an unknown name.
 std::optional<TimeUnit> ParseTimeUnit(std::string_view name);
 
+/// Which time a recording's (bag.h) message is read at.
+enum class RecordingTime {
+  kHeader,   ///< the message's header stamp (when the sensor sampled, as the driver says)
+  kReceive,  ///< when the recorder received it (ROS 1 record time, MCAP log_time)
+};
+/// "header" or "receive".
+std::string_view ToString(RecordingTime time);
+
 struct LogOptions {
   /// Explicit column mapping "t=NAME|INDEX,ax=...,ay=...,az=...[,gx=...]";
   /// indices are 0-based. Keys not given are taken from the header when
@@ -70,6 +82,9 @@ struct LogOptions {
   /// bag, an MCAP file, a ROS 2 bag directory: see bag.h). Empty: the
   /// recording's only sensor_msgs/Imu topic. Ignored for text logs.
   std::string topic;
+  /// The time of each message of a recording: its header stamp or its
+  /// receive time. A text log has neither: kReceive is refused with one.
+  RecordingTime recording_time = RecordingTime::kHeader;
   /// Units of the gyroscope columns: rad/s, or deg/s when true.
   bool gyro_in_dps = false;
   /// The gyroscope columns are raw ADC counts, kept as read
@@ -129,6 +144,8 @@ struct LogStreamSummary {
   bool has_gyro = false;
   /// Exactly the warnings ReadLog would put in Recording::warnings.
   std::vector<std::string> warnings;
+  /// As Recording::stamp_order.
+  StampOrder stamp_order;
 };
 
 /// Reads a log as ReadLog does (same layout detection, same two-thread

@@ -69,6 +69,13 @@ inline constexpr double MaxParameterMagnitude(int index) {
 inline constexpr double kMinCountsPerG = 1e-3;
 inline constexpr double kMaxCountsPerG = 2147483648.0;
 
+/// The magnitude of an accelerometer at rest, in m/s², may differ from
+/// gravity by the sensor's own errors (consumer parts: up to ~0.5 g of bias
+/// and 10 % of scale): as a fraction of gravity, outside [0.5, 1.6] the
+/// units are wrong, not the sensor.
+inline constexpr double kPlausibleRestRatioLow = 0.5;
+inline constexpr double kPlausibleRestRatioHigh = 1.6;
+
 /// The largest angular rate any MEMS gyroscope reports: 4000 °/s full scale
 /// (about 70 rad/s). A reading in rad/s beyond it holds deg/s or counts.
 inline constexpr double kMaxGyroRateRadps = 4000.0 * 0.017453292519943295;

@@ -2,6 +2,7 @@
 /// \brief An accelerometer recording in memory: time and readings.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,29 @@
 #include "mpcal/units.h"
 
 namespace mpcal {
+
+/// How the messages of a recording (bag.h) were ordered in time in the
+/// file. Their rows are put in time order (a stable sort: messages at one
+/// time keep their file order) and one row is kept per time; what that
+/// changed is counted here.
+struct StampOrder {
+  /// Messages whose time is earlier than that of a message before them in
+  /// the file.
+  std::size_t out_of_order = 0;
+  /// How far the worst of them went back: the latest time before it in the
+  /// file minus its own (s).
+  double worst_back_s = 0.0;
+  /// Messages with the time and the readings of the one kept at that time
+  /// (a message recorded twice): dropped.
+  std::size_t duplicated = 0;
+  /// Messages with the time of the one kept but other readings: dropped,
+  /// the first in the file kept (src/io/time_order.cc says why).
+  std::size_t same_time_other_readings = 0;
+
+  bool changed() const {
+    return out_of_order > 0 || duplicated > 0 || same_time_other_readings > 0;
+  }
+};
 
 /// One log, as read. Readings stay in the log's units (`units`) so that raw
 /// counts can be calibrated without a guessed scale; `time_s` is seconds from
@@ -36,6 +60,10 @@ struct Recording {
   std::string source;
   /// Non-fatal findings of the reader (gaps, duplicates, truncated last line).
   std::vector<std::string> warnings;
+  /// A recording's (bag.h) messages put in time order: what that changed
+  /// (one of `warnings` says it in words). Zero for a text log, whose rows
+  /// must be in time order.
+  StampOrder stamp_order;
 
   std::size_t size() const { return time_s.size(); }
   bool empty() const { return time_s.empty(); }

@@ -1,6 +1,11 @@
 #include "bag_log.h"
 
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "chunk_source.h"
@@ -8,6 +13,7 @@
 #include "mpcal/bag.h"
 #include "mpcal/error.h"
 #include "row_sink.h"
+#include "time_order.h"
 
 namespace mpcal::logio {
 namespace {
@@ -41,6 +47,8 @@ std::string ChooseTopic(const std::string& path, const LogOptions& options) {
               Give({{Option::kLogTopic, ""}}));
 }
 
+}  // namespace
+
 // A recording carries its own units (m/s², rad/s) and time: the options
 // that describe a text log's columns would be silently wrong here.
 void RefuseTextOptions(const std::string& path, const LogOptions& options) {
@@ -52,16 +60,93 @@ void RefuseTextOptions(const std::string& path, const LogOptions& options) {
     throw Error(ErrorKind::kOption,
                 path +
                     ": a recording's sensor_msgs/Imu has its own units (m/s2, rad/s) "
-                    "and time (the header stamp); columns, units, time unit and rate "
+                    "and time (the header stamp or the receive time); columns, units, "
+                    "time unit and rate "
                     "are for text logs only");
   }
 }
+
+namespace {
 
 [[noreturn]] void ThrowNoAcceleration(const std::string& path, const std::string& topic) {
   throw Error(ErrorKind::kInput,
               path + ": topic '" + topic +
                   "' gives no linear acceleration (its covariance starts with -1: not "
                   "measured)");
+}
+
+// Two int64 ns times whose difference overflows are not times.
+[[noreturn]] void ThrowTimesApart(const std::string& path, const std::string& topic) {
+  throw Error(ErrorKind::kTime,
+              path + ": topic '" + topic +
+                  "' has message times more than 292 years apart: not times");
+}
+
+// The messages of the topic as rows, in file order: time in ns from the
+// first message's (exact in a double up to 2^53 ns, 104 days; sorting does
+// not need more), the readings as they are.
+struct HeldRows {
+  ChunkRows rows;
+  bool gyro = true;  // as the first message says, for every row
+};
+
+HeldRows ReadMessages(const std::string& path,
+                      const std::string& topic,
+                      RecordingTime time,
+                      std::vector<std::string>& warnings) {
+  HeldRows held;
+  std::int64_t first_ns = 0;
+  bool first = true;
+  ReadImuMessages(
+      path,
+      topic,
+      [&](std::span<const ImuMessage> batch) {
+        for (const ImuMessage& m : batch) {
+          const std::int64_t t_ns =
+              time == RecordingTime::kReceive ? m.receive_ns : m.stamp_ns;
+          if (first) {
+            if (!m.has_linear_acceleration) ThrowNoAcceleration(path, topic);
+            first_ns = t_ns, first = false, held.gyro = m.has_angular_velocity;
+          }
+          std::int64_t offset_ns = 0;
+          if (__builtin_sub_overflow(t_ns, first_ns, &offset_ns)) {
+            ThrowTimesApart(path, topic);
+          }
+          held.rows.time.push_back(static_cast<double>(offset_ns));
+          held.rows.accel.push_back(m.linear_acceleration_mps2);
+          if (held.gyro) held.rows.gyro.push_back(m.angular_velocity_radps);
+        }
+      },
+      warnings);
+  return held;
+}
+
+// Seconds from the earliest message's time (the first row's once sorted):
+// the difference of two whole numbers of ns is exact, so a recording in
+// order gets the times a text log of its stamps in seconds would.
+void ToSecondsFromFirst(std::vector<double>& time_ns) {
+  if (time_ns.empty()) return;
+  const double origin_ns = time_ns.front();
+  for (double& t : time_ns) t = (t - origin_ns) / kNsPerS;
+}
+
+// Streaming: the sorted rows handed to the sink a piece at a time, as a
+// text log's chunks are.
+void HandOverInPieces(RowSink& sink, const ChunkRows& all) {
+  constexpr std::size_t kPieceRows = 1 << 16;
+  ChunkRows piece;
+  for (std::size_t begin = 0; begin < all.time.size(); begin += kPieceRows) {
+    const std::size_t end = std::min(all.time.size(), begin + kPieceRows);
+    const auto b = static_cast<std::ptrdiff_t>(begin);
+    const auto e = static_cast<std::ptrdiff_t>(end);
+    piece.time.assign(all.time.begin() + b, all.time.begin() + e);
+    piece.accel.assign(all.accel.begin() + b, all.accel.begin() + e);
+    if (!all.gyro.empty()) piece.gyro.assign(all.gyro.begin() + b, all.gyro.begin() + e);
+    piece.lines = end - begin;
+    piece.last_row_line = end - begin;
+    piece.has_content = true;
+    sink.Append(piece);
+  }
 }
 
 }  // namespace
@@ -75,39 +160,30 @@ LogStreamSummary ReadBagRows(const std::string& path,
   rec->units = AccelUnits::kMps2;
   rec->gyro_units = GyroUnits::kRadps;
   rec->source = path;
+  std::vector<std::string> warnings;
+  HeldRows held = ReadMessages(path, topic, options.recording_time, warnings);
+  StampOrder order = SortByTime(held.rows.time, held.rows.accel, held.rows.gyro);
+  order.worst_back_s /= kNsPerS;  // sorted in ns
+  ToSecondsFromFirst(held.rows.time);
+  held.rows.lines = held.rows.time.size();
+  held.rows.last_row_line = held.rows.lines;
+  held.rows.has_content = !held.rows.time.empty();
+
   RowSink sink(rec, 1.0, /*index_time=*/false, /*line_base=*/0, /*total_bytes=*/0);
   sink.NameRows("message");
-  if (consume) sink.StreamTo(std::move(consume));
-  std::int64_t first_ns = 0;
-  bool first = true;
-  bool gyro = true;  // as the first message says, for every row
-  ChunkRows rows;
-  std::string lines;  // one line per message, for the sink's message numbers
-  std::vector<std::string> warnings;
-  ReadImuMessages(
-      path,
-      topic,
-      [&](std::span<const ImuMessage> batch) {
-        rows.time.clear(), rows.accel.clear(), rows.gyro.clear();
-        for (const ImuMessage& m : batch) {
-          if (first) {
-            if (!m.has_linear_acceleration) ThrowNoAcceleration(path, topic);
-            first_ns = m.stamp_ns, first = false, gyro = m.has_angular_velocity;
-          }
-          rows.time.push_back(static_cast<double>(m.stamp_ns - first_ns) / kNsPerS);
-          rows.accel.push_back(m.linear_acceleration_mps2);
-          if (gyro) rows.gyro.push_back(m.angular_velocity_radps);
-        }
-        lines.assign(2 * batch.size(), 'm');
-        for (std::size_t i = 1; i < lines.size(); i += 2) lines[i] = '\n';
-        rows.bytes = lines;
-        rows.lines = batch.size();
-        rows.last_row_line = batch.size();
-        rows.has_content = true;
-        sink.Append(rows);
-      },
-      warnings);
+  const bool streaming = static_cast<bool>(consume);
+  if (streaming) {
+    sink.StreamTo(std::move(consume));
+    HandOverInPieces(sink, held.rows);
+  } else {
+    sink.Adopt(std::move(held.rows));
+  }
+  const bool gyro = held.gyro;
+  held = HeldRows{};  // the rows handed over: their memory back before Finish
+  const std::string said = DescribeStampOrder(order, path);
+  if (!said.empty()) warnings.push_back(said);
   rec->warnings.insert(rec->warnings.begin(), warnings.begin(), warnings.end());
+  rec->stamp_order = order;
   sink.Finish(/*has_header=*/false);
 
   LogStreamSummary summary;
@@ -116,6 +192,7 @@ LogStreamSummary ReadBagRows(const std::string& path,
   summary.first_time_s = sink.first_time_s();
   summary.last_time_s = sink.last_time_s();
   summary.has_gyro = gyro && summary.rows > 0;
+  summary.stamp_order = order;
   return summary;
 }
 

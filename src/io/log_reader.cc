@@ -52,6 +52,10 @@ std::string_view ToString(TimeUnit unit) {
   return "unknown";
 }
 
+std::string_view ToString(RecordingTime time) {
+  return time == RecordingTime::kReceive ? "receive" : "header";
+}
+
 std::optional<TimeUnit> ParseTimeUnit(std::string_view name) {
   const std::string n = Lower(name);
   if (n == "auto") return TimeUnit::kAuto;
@@ -103,6 +107,16 @@ void ThrowIfInvalid(const LogOptions& options) {
   if (!problem.empty()) throw Error(ErrorKind::kOption, "log options: " + problem);
 }
 
+// A text log's one time is its time column: no receive time to choose.
+void RefuseReceiveTime(const std::string& path, const LogOptions& options) {
+  if (options.recording_time == RecordingTime::kHeader) return;
+  throw Error(ErrorKind::kOption,
+              path +
+                  ": a text log has one time, its time column; the receive time is "
+                  "a recording's (ROS bag, MCAP)",
+              logio::Give({{Option::kLogRecordingTime, "header"}}));
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -145,6 +159,7 @@ LogScanner::LogScanner(const std::string& path,
                     ": a robotics recording (ROS bag or MCAP) is read, not rewritten "
                     "line by line; only text logs are");
   }
+  RefuseReceiveTime(path, options);
   impl_ = std::make_unique<Impl>(path, options, parse_gyro);
 }
 
@@ -203,6 +218,7 @@ LogStreamSummary ReadRows(const std::string& path,
                           std::function<void(const Recording&)> consume) {
   ThrowIfInvalid(options);
   if (IsBag(path)) return logio::ReadBagRows(path, options, rec, std::move(consume));
+  RefuseReceiveTime(path, options);
   logio::LogFile file(path);
   logio::PageBuffer head_bytes(logio::kChunkBytes);
   std::string read_error;

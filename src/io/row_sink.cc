@@ -190,6 +190,14 @@ void RowSink::ThrowTimeBack(const ChunkRows& c, std::size_t row, std::size_t kep
                           CounterWrapHint(before / time_scale_)));
 }
 
+// A run of rows kept, each later than the one before.
+void RowSink::CountRun(std::span<const double> time) {
+  if (rows_ == 0) first_time_s_ = time.front();
+  rows_ += time.size();
+  last_time_s_ = time.back();
+  gaps_.Add(time);
+}
+
 // Runs of rows each later than the one before are copied at once; a row at
 // the same time as the one before is dropped and counted.
 void RowSink::AppendRows(const ChunkRows& c) {
@@ -210,10 +218,7 @@ void RowSink::AppendRows(const ChunkRows& c) {
     double previous = rows_ == 0 ? time[k++] : last_time_s_;
     while (k < rows && time[k] > previous) previous = time[k++];
     if (k > j) {
-      if (rows_ == 0) first_time_s_ = time[j];
-      rows_ += k - j;
-      last_time_s_ = time[k - 1];
-      gaps_.Add(std::span<const double>(time).subspan(j, k - j));
+      CountRun(std::span<const double>(time).subspan(j, k - j));
       rec_->time_s.insert(rec_->time_s.end(), time.begin() + j, time.begin() + k);
       rec_->accel.insert(rec_->accel.end(), c.accel.begin() + j, c.accel.begin() + k);
       if (gyro) {
@@ -245,6 +250,25 @@ void RowSink::Append(const ChunkRows& c) {
   line_base_ += c.lines;
   if (c.line_too_long) ThrowLineTooLong(rec_->source, line_base_ + 1);
   if (!c.read_error.empty()) throw Error(ErrorKind::kIo, c.read_error);
+}
+
+void RowSink::Adopt(ChunkRows&& c) {
+  const bool increasing =
+      std::adjacent_find(c.time.begin(), c.time.end(), [](double a, double b) {
+        return b <= a;
+      }) == c.time.end();
+  if (consume_ || rows_ > 0 || index_time_ || c.time.empty() || !increasing ||
+      c.failure_line > 0 || c.line_too_long || !c.read_error.empty()) {
+    Append(c);
+    return;
+  }
+  CountRun(c.time);
+  rec_->time_s.swap(c.time);
+  rec_->accel.swap(c.accel);
+  if (!c.gyro.empty()) rec_->gyro_radps.swap(c.gyro);
+  rows_before_ += rec_->time_s.size();
+  previous_line_ = line_base_ + c.last_row_line;
+  line_base_ += c.lines;
 }
 
 // Times that do not advance, or advance by less than any sensor samples,

@@ -83,6 +83,11 @@ class RowSink {
   ///   after it, an overlong line or a read failure.
   void Append(const ChunkRows& c);
 
+  /// As Append for rows in strictly increasing time with no malformed line;
+  /// when holding and nothing is held yet, the arrays of `c` are taken, not
+  /// copied (a recording put in time order in memory: no second copy).
+  void Adopt(ChunkRows&& c);
+
   /// Checks the whole and adds the warnings (cut-off last line,
   /// duplicates, gaps). `has_header`: for the message when there are no rows.
   /// \throws mpcal::Error for no rows or a time beyond any clock.
@@ -100,6 +105,7 @@ class RowSink {
  private:
   void Reserve(const ChunkRows& c);
   void AppendRows(const ChunkRows& c);
+  void CountRun(std::span<const double> time);
   void CheckSamplePeriod() const;
   [[noreturn]] void ThrowTimeBack(const ChunkRows& c, std::size_t row, std::size_t kept);
   std::size_t LineOf(const ChunkRows& c, std::size_t row) const;

@@ -15,11 +15,8 @@
 namespace mpcal {
 namespace {
 
-// The magnitude of a static mean in m/s² may differ from g by the sensor's
-// own errors (consumer parts: up to ~0.5 g of bias and 10 % of scale); far
-// outside this band the units are wrong, not the sensor.
-constexpr double kPlausibleRestRatioLow = 0.5;
-constexpr double kPlausibleRestRatioHigh = 1.6;
+// The band a magnitude at rest must fall in (kPlausibleRestRatioLow,
+// kPlausibleRestRatioHigh) is plausible.h's, shared with inspection.
 
 // Rows between the magnitudes whose median is judged.
 constexpr std::size_t kMagnitudeStride = 16;

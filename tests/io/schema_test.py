@@ -25,7 +25,7 @@ from jsonschema import Draft202012Validator
 
 FAMILIES = ["mpcal.accelerometer", "mpcal.imu", "mpcal.detection",
             "mpcal.repeatability", "mpcal.verification", "mpcal.noise",
-            "mpcal.noise_truth"]
+            "mpcal.noise_truth", "mpcal.inspection"]
 
 # Checked-in files made to be refused, and where the schema must find the
 # fault: a path into the document (a missing field: its name), or "parse"
@@ -253,6 +253,11 @@ def written_files(schemas, mpcal, root, work):
          [("noise.json", "mpcal.noise", ["gyroscope"])]),
         (["noise", str(data / "noise_still.csv"), "--json", "noise_bundled.json"],
          [("noise_bundled.json", "mpcal.noise", [])]),
+        # Inspection: a recording (its IMU topic's ranges) and a text log.
+        (["inspect", str(data / "bags" / "imu_lz4.bag"), "--json", "inspect_bag.json"],
+         [("inspect_bag.json", "mpcal.inspection", ["recording"])]),
+        (["inspect", "imu.csv", "--json", "inspect_log.json"],
+         [("inspect_log.json", "mpcal.inspection", ["text_log"])]),
         # The demo's calibration and truth.
         (["demo", "--preset", "colibri", "--output-dir", "demo"],
          [("demo/calib.json", imu, []), ("demo/truth.json", imu, [])]),

@@ -14,7 +14,7 @@ import subprocess
 import sys
 
 SUBCOMMANDS = ["calibrate", "detect", "apply", "repeat", "verify", "report",
-               "simulate", "demo", "noise"]
+               "simulate", "demo", "noise", "inspect"]
 FLAG = re.compile(r"(?<![\w-])--[a-z][a-z0-9-]*")
 STRING = re.compile(r'"(?:[^"\\\n]|\\.)*"')
 
