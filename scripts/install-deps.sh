@@ -44,6 +44,9 @@ develop=(
   clang-tidy           # bug-prone patterns and function size, scripts/lint.sh
   man-db groff-base    # the man pages rendered without a warning (tests/cli/man_pages.sh)
   zsh                  # the zsh completion checked (tests/cli/completion_zsh.zsh)
+  pybind11-dev python3-dev # the Python module (python/), built when they are there
+  python3-pytest       # its tests (tests/python/)
+  python3-matplotlib   # its example (examples/python/), drawn without a display
 )
 
 case ${1:-all} in

@@ -1,0 +1,389 @@
+"""mpcal: field calibration of MEMS accelerometers (multi-position method)
+and gyroscopes (from the turns between the positions), on numpy arrays.
+
+    >>> import mpcal
+    >>> rec = mpcal.read_log("xsens_acc.mat", units="counts")
+    >>> cal = mpcal.calibrate(rec.t, rec.accel, units="counts", gravity=9.81744)
+    >>> cal.bias_mps2, cal.std.bias_mps2
+    >>> a_mps2, _ = cal.correct(rec.accel)
+
+Units are in the names: ``t`` in seconds, accelerometer readings in the
+units given (``"mps2"``, ``"g"`` or raw ``"counts"``), gyroscope readings in
+rad/s (``"rads"``), deg/s (``"dps"``) or ``"counts"``. Arrays are N×3
+(x, y, z per row), any real dtype, converted to float64 (no copy when they
+are float64 in C order already).
+
+Bad input raises :class:`mpcal.Error` (a ValueError) with ``kind``,
+``advice`` (the keyword arguments that would fix it) and ``figures``;
+findings that do not stop the work are issued as :class:`MpcalWarning`.
+"""
+
+import json
+import math
+import warnings as _warnings
+
+import numpy as np
+
+from . import _mpcal
+from ._errors import Error, MpcalWarning
+
+__all__ = ["Error", "MpcalWarning", "Recording", "Calibration", "Section", "read_log",
+           "detect", "calibrate", "load_calibration", "__version__"]
+
+__version__ = _mpcal.__version__
+
+#: A log in memory, as :func:`read_log` returns it. Attributes: ``t`` (N,
+#: seconds in the log's own clock, strictly increasing), ``accel`` (N×3, in
+#: ``units``: "mps2", "g" or "counts"), ``gyro`` (N×3 in rad/s, or raw
+#: counts when ``gyro_units`` is "counts"; None without a gyroscope),
+#: ``source`` and ``warnings`` (the reader's findings). The arrays are
+#: read-only views of the rows the reader holds: no copy.
+Recording = _mpcal.Recording
+
+_READ_LOG_DEFAULTS = _mpcal._read_log_defaults()
+_CALIBRATE_DEFAULTS = _mpcal._calibrate_defaults()
+
+
+def _warn(messages, stacklevel=3):
+    for message in messages:
+        _warnings.warn(message, MpcalWarning, stacklevel=stacklevel)
+
+
+def _options(function, given, defaults):
+    unknown = sorted(set(given) - set(defaults))
+    if unknown:
+        raise TypeError(f"{function}() got unknown keyword argument(s) "
+                        f"{', '.join(unknown)}; known: {', '.join(sorted(defaults))}")
+    merged = dict(defaults)
+    merged.update(given)
+    return merged
+
+
+def _rows(name, values, columns):
+    """`values` as float64 in C order, (N,) or (N, 3), all finite; else an
+    mpcal.Error naming the argument."""
+    a = np.asarray(values)
+    if a.dtype.kind not in "fiu":
+        raise Error(f"{name}: dtype {a.dtype} is not a real number type; give "
+                    f"float64 (or any integer or float dtype)", kind="input")
+    if columns == 1 and a.ndim != 1:
+        raise Error(f"{name}: shape {a.shape}, expected (N,): one time (s) per sample",
+                    kind="input")
+    if columns == 3 and (a.ndim != 2 or a.shape[1] != 3):
+        raise Error(f"{name}: shape {a.shape}, expected (N, 3): one row per sample, "
+                    f"columns x, y, z", kind="input")
+    a = np.ascontiguousarray(a, dtype=np.float64)
+    finite = np.isfinite(a)
+    if not finite.all():
+        bad = np.flatnonzero(~finite.reshape(len(a), -1).all(axis=1))
+        raise Error(f"{name}: row {bad[0]} is not finite ({a[bad[0]]}), and "
+                    f"{len(bad)} row(s) in all; drop or fill them first", kind="input")
+    return a
+
+
+def _same_length(**arrays):
+    lengths = {k: len(v) for k, v in arrays.items() if v is not None}
+    if len(set(lengths.values())) > 1:
+        shown = ", ".join(f"{k} has {n}" for k, n in lengths.items())
+        raise Error(f"the arrays differ in length ({shown} rows): give one row per "
+                    f"sample in each", kind="input")
+
+
+def read_log(path, **options):
+    """Read a log (delimited text as loggers write it, a ROS 1 bag, an MCAP
+    file or a ROS 2 bag directory) into a :data:`Recording`.
+
+    Keyword arguments (the log's layout, as ``mpcal calibrate`` reads it):
+
+    columns : str
+        "t=NAME|INDEX,ax=...,ay=...,az=...[,gx=...,gy=...,gz=...]", 0-based
+        indices; default: from the header, else t, ax, ay, az in order.
+    units : str
+        Units of the accelerometer columns: "mps2" (default), "g", "counts".
+    gyro_units : str
+        Units of the gyroscope columns: "rads" (default), "dps" (converted
+        to rad/s on reading) or "counts" (kept).
+    time_unit : str
+        "auto" (default), "s", "ms", "us", "ns" or "index".
+    rate_hz : float
+        Sample rate (Hz) when the time column is a sample index or absent.
+    topic : str
+        The sensor_msgs/Imu topic of a bag or MCAP file (default: its only
+        one).
+    gyro_log, gyro_columns : str
+        The gyroscope in a file of its own, row by row with the log
+        (imu_tk's xsens_gyro.mat), and its column mapping.
+
+    The reader's findings (gaps, duplicated times) are in ``warnings`` and
+    issued as :class:`MpcalWarning`. Raises :class:`Error` for a missing or
+    malformed file (naming the line and column), or invalid options.
+    """
+    recording = _mpcal._read_log(str(path), _options("read_log", options,
+                                                     _READ_LOG_DEFAULTS))
+    _warn(recording.warnings)
+    return recording
+
+
+def _arrays_provenance(units, gravity, options):
+    given = {k: v for k, v in options.items() if v != _CALIBRATE_DEFAULTS[k]}
+    args = [f"units={units!r}"]
+    if gravity is not None:
+        args.append(f"gravity={gravity!r}")
+    args += [f"{k}={v!r}" for k, v in sorted(given.items())]
+    return "mpcal.calibrate(t, accel, " + ", ".join(args) + ")"
+
+
+def calibrate(t, accel, gyro=None, units="mps2", gravity=None, gyro_units="rads",
+              **options):
+    """Calibrate an accelerometer (and the gyroscope with it) from a
+    multi-position session: detect the static positions, estimate bias,
+    scale-factor errors and non-orthogonality with their 1σ, and, when
+    ``gyro`` is given, the gyroscope's matrix M and bias from the turns.
+
+    t : array (N,)
+        Time of each sample (s), strictly increasing.
+    accel : array (N, 3)
+        Accelerometer readings in ``units``: "mps2", "g" or "counts" (raw
+        ADC counts: the nominal scale is found from the positions).
+    gyro : array (N, 3), optional
+        Gyroscope readings of the same samples in ``gyro_units``: "rads",
+        "dps" or "counts".
+    gravity : float, optional
+        Local magnitude of gravity (m/s²); default 9.80665, or the WGS84
+        normal gravity at ``latitude_deg`` (deg) and ``height_m`` (m).
+
+    Options (the library's defaults in parentheses; as ``mpcal calibrate``'s
+    flags): ``window_s`` (1.0 s), ``min_static_s`` (2.0 s), ``settle_s``
+    (0.3 s), ``threshold`` (3.0 × the quiet level), ``max_still_g`` (0.05
+    g), ``merge_gap_s`` (1.0 s), ``merge_angle_deg`` (3.0 deg),
+    ``range_g`` (0: found from the data), ``model`` ("shin-el-sheimy-9" or
+    "bias-scale-6"), ``robust`` ("none", "huber", "cauchy"),
+    ``counts_per_g`` (raw counts: the datasheet's sensitivity; 0: the
+    fitted sphere), ``gyro_window_s`` (1.0 s), ``gyro_g_sensitivity``
+    ("auto", "on", "off"), ``calibrate_gyroscope`` (True).
+
+    Returns a :class:`Calibration` whose attributes mirror the calibration
+    file ``mpcal calibrate -o`` writes. Its warnings are also issued as
+    :class:`MpcalWarning`. Raises :class:`Error` when the session cannot be
+    calibrated (kind "session", with the advice), the readings do not fit
+    ``units`` (kind "units"), the fit does not converge, or an argument is
+    malformed (naming it).
+    """
+    options = _options("calibrate", options, _CALIBRATE_DEFAULTS)
+    t = _rows("t", t, 1)
+    accel = _rows("accel", accel, 3)
+    if gyro is not None:
+        gyro = _rows("gyro", gyro, 3)
+    _same_length(t=t, accel=accel, gyro=gyro)
+    if gravity is not None and not math.isfinite(float(gravity)):
+        raise Error(f"gravity: {gravity} is not a number of m/s²", kind="option",
+                    advice={"gravity": None})
+    native = _mpcal._calibrate(t, accel, gyro, units, gyro_units, gravity, options,
+                               _arrays_provenance(units, gravity, options))
+    result = Calibration(native)
+    _warn(result.warnings)
+    return result
+
+
+_DETECT_KEYS = ("window_s", "min_static_s", "settle_s", "threshold", "max_still_g",
+                "merge_gap_s", "merge_angle_deg", "range_g")
+
+
+def detect(t, accel, units="mps2", gravity=None, **options):
+    """Find the static positions of a session and judge how well they cover
+    the sphere for a calibration, as ``mpcal detect`` does.
+
+    t : array (N,), seconds; accel : array (N, 3) in ``units`` ("mps2",
+    "g", "counts"); gravity : float (m/s², default 9.80665), to check the
+    units by. Options as :func:`calibrate`'s static detection:
+    ``window_s``, ``min_static_s``, ``settle_s``, ``threshold``,
+    ``max_still_g``, ``merge_gap_s``, ``merge_angle_deg``, ``range_g``.
+
+    Returns a :class:`Section` with ``positions`` (one per static position:
+    ``start_s``, ``end_s`` (s, the log's clock), ``begin``, ``end`` (row
+    indices, end excluded), ``samples``, ``mean`` and ``std`` (3, in
+    ``units``)), ``coverage`` (``positions``, ``distinct_positions``,
+    ``covered`` and ``missing`` of the 26 cube directions (what points
+    down), ``verdict``, ``observability``, ``summary``, ``next_steps``),
+    ``outcome`` (``kind``: "found", "never_still", "too_short",
+    "all_clipped"; ``message``; ``advice``: keyword arguments that would
+    change it), ``findings`` (positions dropped, a sensor never still; also
+    issued as :class:`MpcalWarning`) and the detector's figures
+    (``quiet_level``, ``threshold`` in ``units``, ``still_fraction``,
+    ``longest_still_s``, ``sample_period_s``).
+    """
+    defaults = {k: _CALIBRATE_DEFAULTS[k] for k in _DETECT_KEYS}
+    options = _options("detect", options, defaults)
+    t = _rows("t", t, 1)
+    accel = _rows("accel", accel, 3)
+    _same_length(t=t, accel=accel)
+    g = 9.80665 if gravity is None else float(gravity)
+    result = _mpcal._detect(t, accel, units, g, options)
+    _warn(f["message"] for f in result["findings"])
+    return Section(result)
+
+
+def load_calibration(path):
+    """Read a calibration file (mpcal.accelerometer/1 or mpcal.imu/1) into a
+    :class:`Calibration`. Raises :class:`Error` (kind "format", "input" or
+    "io") for an unreadable or malformed file."""
+    return Calibration(_mpcal._load_calibration(str(path)))
+
+
+class Section:
+    """A block of the calibration file with attribute access: numbers as
+    floats, lists of numbers as numpy arrays, blocks as Sections. The keys
+    carry their units as the file's do. ``to_dict()`` gives the JSON."""
+
+    def __init__(self, data):
+        self._data = data
+
+    def __getattr__(self, name):
+        try:
+            return _value(self._data[name])
+        except KeyError:
+            raise AttributeError(f"no '{name}' in this block; it has: "
+                                 f"{', '.join(self._data)}") from None
+
+    def __getitem__(self, name):
+        return _value(self._data[name])
+
+    def __contains__(self, name):
+        return name in self._data
+
+    def __dir__(self):
+        return list(self._data)
+
+    def keys(self):
+        return self._data.keys()
+
+    def to_dict(self):
+        return json.loads(json.dumps(self._data))
+
+    def __repr__(self):
+        return f"Section({self._data!r})"
+
+
+def _value(v):
+    if isinstance(v, dict):
+        return Section(v)
+    if isinstance(v, list) and v and all(isinstance(x, (int, float)) and
+                                          not isinstance(x, bool) for x in v):
+        return np.array(v, dtype=np.float64)
+    if isinstance(v, list) and v and all(isinstance(x, list) for x in v):
+        try:
+            return np.array(v, dtype=np.float64)
+        except (TypeError, ValueError):
+            pass
+    if isinstance(v, list):
+        return [_value(x) for x in v]
+    return v
+
+
+class Calibration:
+    """A calibration, as :func:`calibrate` makes it or
+    :func:`load_calibration` reads it. Its attributes mirror the calibration
+    file (docs/formats.md), with the file's names and units:
+
+    bias_mps2 (3,), scale_factor_error (3, dimensionless), non_orthogonality_rad
+    (a Section with yz, zx, zy), gravity_mps2, model, input (units,
+    mps2_per_unit, ...), std (the same parameters' 1σ), fit (residuals,
+    variance factor, split_half, ...), positions (one Section per static
+    position), warnings, gyroscope (m (3×3), bias_radps, std, fit, ... or
+    None), provenance; bias_drift_mps2_per_s when the session showed one.
+    """
+
+    def __init__(self, native):
+        self._native = native
+        self._file = json.loads(native._json())
+
+    def __getattr__(self, name):
+        if name.startswith("_"):
+            raise AttributeError(name)
+        try:
+            return _value(self._file[name])
+        except KeyError:
+            raise AttributeError(f"the calibration has no '{name}'; it has: "
+                                 f"{', '.join(self._file)}") from None
+
+    def __dir__(self):
+        return sorted(set(super().__dir__()) | set(self._file))
+
+    @property
+    def bias_mps2(self):
+        """Accelerometer bias (m/s²), x, y, z: the reading at zero specific
+        force, in nominal m/s²."""
+        return _value(self._file["bias_mps2"])
+
+    @property
+    def scale_factor_error(self):
+        """Scale-factor errors (dimensionless: 0.001 is 1000 ppm), x, y, z."""
+        return _value(self._file["scale_factor_error"])
+
+    @property
+    def non_orthogonality_rad(self):
+        """Non-orthogonality angles (rad): yz, zx, zy."""
+        return _value(self._file["non_orthogonality_rad"])
+
+    @property
+    def std(self):
+        """1σ of each parameter, with the same names and units (None for a
+        truth file)."""
+        return _value(self._file["std"]) if "std" in self._file else None
+
+    @property
+    def gyroscope(self):
+        """The gyroscope's calibration (m: 3×3, bias_radps, std, fit,
+        position_bias, ...) or None for an accelerometer alone."""
+        g = self._file.get("gyroscope")
+        return None if g is None else _value(g)
+
+    @property
+    def split_half(self):
+        """The split-half check (fit.split_half): the halves' z per parameter,
+        χ², p-value, the widening applied to every 1σ; None when absent."""
+        s = self._file.get("fit", {}).get("split_half")
+        return None if s is None else _value(s)
+
+    @property
+    def input_units(self):
+        """Units of the readings this calibration corrects: "mps2", "g",
+        "counts"."""
+        return self._file["input"]["units"]
+
+    def to_dict(self):
+        """The calibration file's JSON as Python objects."""
+        return json.loads(json.dumps(self._file))
+
+    def correct(self, accel, gyro=None, units=None, gyro_units=None):
+        """Correct readings: returns ``(accel_mps2, gyro_radps)``, N×3 each
+        (``gyro_radps`` None without ``gyro``).
+
+        accel : array (N, 3) in ``units`` (default: the calibration's input
+            units; "mps2" and "g" convert into each other, counts need a
+            calibration made in counts).
+        gyro : array (N, 3) in ``gyro_units`` (default: the units the
+            calibration was made in); corrected with the gyroscope's M, bias
+            and g-sensitivity (from the corrected specific force).
+        """
+        accel = _rows("accel", accel, 3)
+        if gyro is not None:
+            gyro = _rows("gyro", gyro, 3)
+            _same_length(accel=accel, gyro=gyro)
+        if units is None:
+            units = self.input_units
+        if gyro_units is None:
+            g = self._file.get("gyroscope")
+            gyro_units = g["input"]["units"] if g else "rads"
+        return self._native._correct(accel, gyro, units, gyro_units)
+
+    def save(self, path):
+        """Write the calibration file (JSON) to ``path``, whole or not at
+        all (a temporary file renamed into place). Raises :class:`Error`
+        (kind "io") when it cannot be written."""
+        self._native._save(str(path))
+
+    def __repr__(self):
+        b = ", ".join(f"{x:.6g}" for x in self._file["bias_mps2"])
+        return (f"<mpcal.Calibration {self._file['format']} {self._file['model']}: "
+                f"bias_mps2 [{b}]>")
