@@ -15,10 +15,6 @@
 namespace mpcal::python {
 namespace {
 
-py::list Vec(const Eigen::Vector3d& v) {
-  return py::cast(std::vector<double>{v.x(), v.y(), v.z()});
-}
-
 std::string OutcomeName(DetectOutcome kind) {
   switch (kind) {
     case DetectOutcome::kFound:
@@ -39,36 +35,6 @@ py::dict Finding(std::string kind, const std::string& sentence, const Advice& ad
   d["message"] = sentence;
   d["advice"] = AdviceSettings(advice);
   d["stage"] = StageOf(advice);
-  return d;
-}
-
-py::dict CoverageDict(const CoverageResult& c) {
-  const auto& names = CanonicalDirections();
-  auto down = [&](const std::vector<int>& indices) {
-    py::list out;
-    for (int i : indices) out.append(names[static_cast<std::size_t>(i)].down);
-    return out;
-  };
-  py::dict d;
-  d["positions"] = c.positions;
-  d["distinct_positions"] = c.distinct_positions;
-  d["required_positions"] = c.required_positions;
-  d["recommended_positions"] = c.recommended_positions;
-  d["covered"] = down(c.covered);
-  d["missing"] = down(c.missing);
-  d["verdict"] = std::string(ToString(c.verdict));
-  d["observability"] = c.observability;
-  d["largest_empty_cap_deg"] = c.largest_empty_cap_deg;
-  d["emptiest_direction"] = Vec(c.emptiest_direction);
-  d["summary"] = Summary(c);
-  py::list problems;
-  for (const CoverageProblem& p : c.problems) problems.append(Describe(p));
-  d["problems"] = problems;
-  py::list steps;
-  for (const CoverageStep& s : c.advice) {
-    steps.append(Finding("coverage_step", Describe(s), s.advice));
-  }
-  d["next_steps"] = steps;
   return d;
 }
 
@@ -103,30 +69,10 @@ py::dict Detect(const Rows& t,
     detection = DetectStatic(recording, options);
     coverage = AssessCoverage(detection, coverage_options);
   }
-  py::list positions;
-  for (const StaticInterval& s : detection.intervals) {
-    py::dict p;
-    p["begin"] = s.begin;
-    p["end"] = s.end;
-    p["start_s"] = s.start_s;
-    p["end_s"] = s.end_s;
-    p["samples"] = s.samples();
-    p["mean"] = Vec(s.mean);
-    p["std"] = Vec(s.std);
-    positions.append(p);
-  }
-  py::dict d;
-  d["positions"] = positions;
-  d["coverage"] = CoverageDict(coverage);
-  d["quiet_level"] = detection.quiet_level;
-  d["threshold"] = detection.threshold;
-  d["threshold_capped"] = detection.threshold_capped;
-  d["still_fraction"] = detection.still_fraction;
-  d["longest_still_s"] = detection.longest_still_s;
-  d["sample_period_s"] = detection.sample_period_s;
-  d["dropped_short"] = detection.dropped_short;
-  d["dropped_clipped"] = detection.dropped_clipped;
-  d["merged"] = detection.merged;
+  // The document `mpcal detect --json` writes (mpcal.detection/1), with
+  // the outcome and the findings' advice as facts beside its sentences.
+  py::dict d = py::module_::import("json").attr("loads")(DetectionReportJson(
+      detection, coverage, coverage_options, "<arrays>", nullptr, {}));
   d["outcome"] = Finding(OutcomeName(detection.finding.kind),
                          Describe(detection.finding),
                          detection.finding.advice);

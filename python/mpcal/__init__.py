@@ -20,6 +20,7 @@ findings that do not stop the work are issued as :class:`MpcalWarning`.
 
 import json
 import math
+from collections.abc import Mapping
 import warnings as _warnings
 
 import numpy as np
@@ -199,18 +200,22 @@ def detect(t, accel, units="mps2", gravity=None, **options):
     ``window_s``, ``min_static_s``, ``settle_s``, ``threshold``,
     ``max_still_g``, ``merge_gap_s``, ``merge_angle_deg``, ``range_g``.
 
-    Returns a :class:`Section` with ``positions`` (one per static position:
-    ``start_s``, ``end_s`` (s, the log's clock), ``begin``, ``end`` (row
-    indices, end excluded), ``samples``, ``mean`` and ``std`` (3, in
-    ``units``)), ``coverage`` (``positions``, ``distinct_positions``,
-    ``covered`` and ``missing`` of the 26 cube directions (what points
-    down), ``verdict``, ``observability``, ``summary``, ``next_steps``),
-    ``outcome`` (``kind``: "found", "never_still", "too_short",
-    "all_clipped"; ``message``; ``advice``: keyword arguments that would
-    change it), ``findings`` (positions dropped, a sensor never still; also
-    issued as :class:`MpcalWarning`) and the detector's figures
-    (``quiet_level``, ``threshold`` in ``units``, ``still_fraction``,
-    ``longest_still_s``, ``sample_period_s``).
+    Returns a :class:`Section` with what ``mpcal detect --json`` writes
+    (format mpcal.detection/1): ``intervals`` (one per static position:
+    ``begin``, ``end`` (row indices, end excluded), ``start_s``, ``end_s``,
+    ``duration_s`` (s, the log's clock), ``samples``, ``mean``, ``std`` and
+    ``noise`` (in ``units``), ``direction`` (unit vector),
+    ``angle_to_previous_deg``), ``coverage`` (``positions``,
+    ``distinct_positions``, ``covered`` and ``missing`` of the 26 cube
+    directions (by what points down), ``axes``, ``verdict``,
+    ``observability``, ``problems``, ``advice``, ``summary``),
+    ``detection`` (``quiet_level`` and ``threshold`` in ``units``,
+    ``still_fraction``, ``longest_still_s``, ``sample_period_s``, ...);
+    and besides: ``outcome`` (``kind``: "found", "never_still",
+    "too_short" or "all_clipped"; ``message``; ``advice``: the keyword
+    arguments that would change it) and ``findings`` (a position dropped,
+    a sensor never still: ``kind``, ``message``, ``advice``; also issued as
+    :class:`MpcalWarning`).
     """
     defaults = {k: _CALIBRATE_DEFAULTS[k] for k in _DETECT_KEYS}
     options = _options("detect", options, defaults)
@@ -230,15 +235,18 @@ def load_calibration(path):
     return Calibration(_mpcal._load_calibration(str(path)))
 
 
-class Section:
-    """A block of the calibration file with attribute access: numbers as
-    floats, lists of numbers as numpy arrays, blocks as Sections. The keys
-    carry their units as the file's do. ``to_dict()`` gives the JSON."""
+class Section(Mapping):
+    """A block of a result file (a calibration, a detection) read as a
+    mapping and by attribute: numbers as floats, lists of numbers as numpy
+    arrays, blocks as Sections. The keys carry their units as the file's
+    do. ``to_dict()`` gives the JSON's Python objects."""
 
     def __init__(self, data):
         self._data = data
 
     def __getattr__(self, name):
+        if name.startswith("_"):
+            raise AttributeError(name)
         try:
             return _value(self._data[name])
         except KeyError:
@@ -248,14 +256,14 @@ class Section:
     def __getitem__(self, name):
         return _value(self._data[name])
 
-    def __contains__(self, name):
-        return name in self._data
-
     def __dir__(self):
         return list(self._data)
 
-    def keys(self):
-        return self._data.keys()
+    def __iter__(self):
+        return iter(self._data)
+
+    def __len__(self):
+        return len(self._data)
 
     def to_dict(self):
         return json.loads(json.dumps(self._data))

@@ -13,9 +13,10 @@ class Error(ValueError):
         "input", "io", "option", "columns", "units", "time", "format" or
         "session".
     advice : dict
-        Keyword arguments that would change the outcome, any one of which
-        would do: ``{"units": "g"}``, ``{"min_static_s": 1.2}``. A value of
-        None is the caller's to choose.
+        The keyword arguments the message speaks of, with the values the
+        data suggest: ``{"units": "g"}``, ``{"min_static_s": 1.1,
+        "settle_s": 0.15, "threshold": None}``; None is a value of the
+        caller's choosing. The message says how they combine.
     stage : str or None
         An mpcal function to run to see more ("detect", ...), on
         ``stage_input`` when that is not empty.

@@ -146,3 +146,53 @@ def test_arrays_of_other_dtypes_give_the_same_result(recording, cal):
     other = mpcal.calibrate(recording.t, np.asfortranarray(counts), units="counts",
                             gravity=XSENS_GRAVITY_MPS2)
     np.testing.assert_allclose(other.bias_mps2, cal.bias_mps2, rtol=RTOL)
+
+
+def test_detect_equals_the_commands_json(recording, tmp_path):
+    run_mpcal("detect", XSENS_ACC, "--units", "counts", "--gravity", XSENS_GRAVITY_MPS2,
+              "--json", "detect.json", cwd=tmp_path)
+    cli = json.loads((tmp_path / "detect.json").read_text())
+    d = mpcal.detect(recording.t, recording.accel, units="counts",
+                     gravity=XSENS_GRAVITY_MPS2)
+    assert d.format == "mpcal.detection/1"
+    assert d.outcome.kind == "found"
+    assert len(d.intervals) == len(cli["intervals"]) == 38
+    for py, c in zip(d.intervals, cli["intervals"]):
+        assert (py.begin, py.end, py.samples) == (c["begin"], c["end"], c["samples"])
+        np.testing.assert_allclose(py.mean, c["mean"], rtol=RTOL)
+        # The interval's mean is the mean of its rows (counts), computed here.
+        np.testing.assert_allclose(py.mean, recording.accel[py.begin:py.end].mean(axis=0),
+                                   rtol=1e-12)
+    assert d.coverage.covered == cli["coverage"]["covered"]
+    assert d.coverage.missing == cli["coverage"]["missing"]
+    assert d.coverage.verdict == cli["coverage"]["verdict"] == "usable with warnings"
+
+
+def test_detect_says_what_to_change_when_positions_are_too_short():
+    # Four positions held 2.5 s, 1 s turns between them: too short for the
+    # default minimum of 2 s once the window and the settling are trimmed.
+    rng = np.random.default_rng(3)
+    dirs = np.array([[0, 0, 1], [0, 1, 0], [1, 0, 0], [0, 0, -1.0]])
+    hold, turn, rate_hz = 250, 100, 100.0
+    rows = []
+    for i, d in enumerate(dirs):
+        rows.append(np.tile(d * 9.80665, (hold, 1)))
+        if i + 1 < len(dirs):
+            w = np.linspace(0, 1, turn)[:, None]
+            m = (1 - w) * d + w * dirs[i + 1]
+            rows.append(m / np.linalg.norm(m, axis=1, keepdims=True) * 9.80665)
+    accel = np.vstack(rows) + rng.normal(scale=0.005, size=(sum(map(len, rows)), 3))
+    t = np.arange(len(accel)) / rate_hz
+    d = mpcal.detect(t, accel)
+    assert d.outcome.kind == "too_short"
+    assert len(d.intervals) == 0
+    assert 0 < d.outcome.advice["min_static_s"] < 2.0
+    # The values the data suggest, taken, find the four positions, each
+    # within its still stretch.
+    suggested = {k: v for k, v in d.outcome.advice.items() if v is not None}
+    found = mpcal.detect(t, accel, **suggested)
+    assert found.outcome.kind == "found"
+    assert len(found.intervals) == 4
+    for i, interval in enumerate(found.intervals):
+        start = i * (hold + turn) / rate_hz
+        assert start <= interval.start_s < interval.end_s <= start + hold / rate_hz
