@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "arrays.h"
 #include "errors.h"
+#include "interrupt.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/coverage.h"
 #include "mpcal/detect.h"
@@ -61,14 +63,13 @@ py::dict Detect(const Rows& t,
   // The hold a new position needs, as `mpcal detect` advises it.
   coverage_options.hold_s = std::max(
       10.0, std::ceil(options.min_static_s + 2 * options.settle_s + options.window_s));
-  DetectResult detection;
-  CoverageResult coverage;
-  {
-    const py::gil_scoped_release unlocked;
-    CheckUnits(recording, gravity_mps2);
-    detection = DetectStatic(recording, options);
-    coverage = AssessCoverage(detection, coverage_options);
-  }
+  auto [detection, coverage] = Interruptible(
+      [recording = std::move(recording), options, coverage_options, gravity_mps2] {
+        CheckUnits(recording, gravity_mps2);
+        DetectResult found = DetectStatic(recording, options);
+        CoverageResult covered = AssessCoverage(found, coverage_options);
+        return std::pair{std::move(found), std::move(covered)};
+      });
   // The document `mpcal detect --json` writes (mpcal.detection/1), with
   // the outcome and the findings' advice as facts beside its sentences.
   py::dict d = py::module_::import("json").attr("loads")(DetectionReportJson(

@@ -14,6 +14,7 @@
 #include "arrays.h"
 #include "detect.h"
 #include "errors.h"
+#include "interrupt.h"
 #include "mpcal/apply.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
@@ -21,6 +22,7 @@
 #include "mpcal/gravity.h"
 #include "mpcal/gyro_log.h"
 #include "mpcal/log_reader.h"
+#include "simulate.h"
 
 namespace mpcal::python {
 namespace {
@@ -73,21 +75,22 @@ Recording ReadLogFrom(const std::string& path, const py::dict& options) {
   const LogOptions log = LogOptionsFrom(options);
   const auto gyro_log = Get<std::string>(options, "gyro_log");
   const auto gyro_columns = Get<std::string>(options, "gyro_columns");
-  const py::gil_scoped_release unlocked;
-  Recording recording = ReadLog(path, log);
-  if (!gyro_log.empty()) {
-    LogOptions gyro_options;
-    gyro_options.columns = gyro_columns;
-    gyro_options.time_unit = log.time_unit;
-    gyro_options.rate_hz = log.rate_hz;
-    gyro_options.gyro_in_dps = log.gyro_in_dps;
-    gyro_options.gyro_in_counts = log.gyro_in_counts;
-    const Recording gyro = ReadGyroLog(gyro_log, gyro_options);
-    MergeGyroLog(recording, gyro, log.gyro_units());
-    recording.warnings.insert(
-        recording.warnings.end(), gyro.warnings.begin(), gyro.warnings.end());
-  }
-  return recording;
+  return Interruptible([path, log, gyro_log, gyro_columns] {
+    Recording recording = ReadLog(path, log);
+    if (!gyro_log.empty()) {
+      LogOptions gyro_options;
+      gyro_options.columns = gyro_columns;
+      gyro_options.time_unit = log.time_unit;
+      gyro_options.rate_hz = log.rate_hz;
+      gyro_options.gyro_in_dps = log.gyro_in_dps;
+      gyro_options.gyro_in_counts = log.gyro_in_counts;
+      const Recording gyro = ReadGyroLog(gyro_log, gyro_options);
+      MergeGyroLog(recording, gyro, log.gyro_units());
+      recording.warnings.insert(
+          recording.warnings.end(), gyro.warnings.begin(), gyro.warnings.end());
+    }
+    return recording;
+  });
 }
 
 py::dict CalibrateDefaults() {
@@ -186,11 +189,8 @@ Calibration Calibrate(const Rows& t,
                 "counts_per_g is the scale of raw counts: it goes with units='counts'",
                 Suggest(Option::kLogUnits, "counts"));
   }
-  CalibrateResult result;
-  {
-    const py::gil_scoped_release unlocked;
-    result = CalibrateRecording(recording, c);
-  }
+  CalibrateResult result = Interruptible(
+      [recording = std::move(recording), c] { return CalibrateRecording(recording, c); });
   if (!result.solve.converged()) {
     throw Error(ErrorKind::kSession,
                 fmt::format("the fit did not converge ({}); check the positions with "
@@ -307,6 +307,7 @@ PYBIND11_MODULE(_mpcal, m) {
     return ReadCalibrationFile(path);
   });
   AddDetect(m);
+  AddSimulate(m);
 }
 
 }  // namespace mpcal::python

@@ -29,7 +29,8 @@ from . import _mpcal
 from ._errors import Error, MpcalWarning
 
 __all__ = ["Error", "MpcalWarning", "Recording", "Calibration", "Section", "read_log",
-           "detect", "calibrate", "load_calibration", "__version__"]
+           "detect", "calibrate", "load_calibration", "simulate_static", "Simulation",
+           "__version__"]
 
 __version__ = _mpcal.__version__
 
@@ -226,6 +227,57 @@ def detect(t, accel, units="mps2", gravity=None, **options):
     result = _mpcal._detect(t, accel, units, g, options)
     _warn(f["message"] for f in result["findings"])
     return Section(result)
+
+
+_SIMULATE_STATIC_DEFAULTS = _mpcal._simulate_static_defaults()
+
+
+class Simulation:
+    """A simulated session (:func:`simulate_static`) and its truth.
+
+    t (N, s), accel (N×3, in ``units``), gyro (N×3 rad/s, or None):
+    read-only arrays; truth: a :class:`Calibration` such that
+    ``truth.correct(accel)`` is the true specific force (m/s²) up to the
+    noise; still_ranges (K×2 row indices, end excluded) and directions (K×3
+    unit vectors, the gravity reaction in the sensor frame) of the
+    positions; noise_std_mps2 (3, per-sample white-noise σ); rate_hz.
+    """
+
+    def __init__(self, recording, truth, still_ranges, directions, noise_std_mps2,
+                 rate_hz):
+        self.recording = recording
+        self.t, self.accel, self.gyro = recording.t, recording.accel, recording.gyro
+        self.units = recording.units
+        self.truth = Calibration(truth)
+        self.still_ranges = still_ranges
+        self.directions = directions
+        self.noise_std_mps2 = np.asarray(noise_std_mps2)
+        self.rate_hz = rate_hz
+
+    def __repr__(self):
+        return (f"<mpcal.Simulation {len(self.t)} rows at {self.rate_hz:g} Hz, "
+                f"{len(self.still_ranges)} positions, units {self.units}>")
+
+
+def simulate_static(**options):
+    """Simulate a hand-held multi-position session with known errors, as
+    ``mpcal simulate static`` does (docs/method.md §6).
+
+    Options (defaults in parentheses): ``preset`` ("mti-g"; also
+    "colibri", "inertiacube3": the paper's devices), ``seed`` (1: the same
+    session on every machine), ``positions`` (26: the cube directions, then
+    random ones), ``tilt_deg`` (5.0, largest hand tilt), ``dwell_s`` (10.0
+    s still per position), ``turn_s`` (2.0 s per turn), ``initial_rest_s``
+    (10.0 s), ``rate_hz`` (0: the device's), ``units`` ("mps2", "g",
+    "counts"), ``counts_per_mps2`` (400.0) and ``counts_offset`` (32768.0)
+    for counts, ``gyro`` (False: also simulate a gyroscope), ``gravity``
+    (9.80665 m/s²).
+
+    Returns a :class:`Simulation`. Raises :class:`Error` (kind "option") for
+    an unknown preset or an option out of range.
+    """
+    options = _options("simulate_static", options, _SIMULATE_STATIC_DEFAULTS)
+    return Simulation(*_mpcal._simulate_static(options))
 
 
 def load_calibration(path):

@@ -100,3 +100,22 @@ def detect(t: ArrayLike, accel: ArrayLike, units: AccelUnits = ...,
            settle_s: float = ..., threshold: float = ..., max_still_g: float = ...,
            merge_gap_s: float = ..., merge_angle_deg: float = ..., range_g: float = ...
            ) -> Section: ...
+
+class Simulation:
+    recording: Recording
+    t: npt.NDArray[np.float64]
+    accel: npt.NDArray[np.float64]
+    gyro: Optional[npt.NDArray[np.float64]]
+    units: str
+    truth: Calibration
+    still_ranges: npt.NDArray[np.int64]
+    directions: npt.NDArray[np.float64]
+    noise_std_mps2: npt.NDArray[np.float64]
+    rate_hz: float
+
+def simulate_static(*, preset: str = ..., seed: int = ..., positions: int = ...,
+                    tilt_deg: float = ..., dwell_s: float = ..., turn_s: float = ...,
+                    initial_rest_s: float = ..., rate_hz: float = ...,
+                    units: AccelUnits = ..., counts_per_mps2: float = ...,
+                    counts_offset: float = ..., gyro: bool = ..., gravity: float = ...
+                    ) -> Simulation: ...
