@@ -151,3 +151,18 @@ def test_reader_findings_are_warnings(tmp_path):
         rec = mpcal.read_log(log)
     assert len(rec) == 50
     assert any("duplicate" in w for w in rec.warnings)
+
+
+def test_exceptions_inside_the_library_after_other_extensions_loaded(tmp_path):
+    # libstdc++ loaded first by another extension (matplotlib's, in C++):
+    # the library's own exceptions, thrown and caught inside it (the reader
+    # asks whether a text file is a bag), must unwind with the same unwinder.
+    import subprocess
+    import sys
+    pytest.importorskip("matplotlib._path")
+    code = ("import matplotlib._path; import mpcal; "
+            f"r = mpcal.read_log({str(XSENS_ACC)!r}, units='counts'); print(len(r))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          check=False)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "51175"
