@@ -29,6 +29,7 @@ demo=(
 package=(
   dpkg-dev             # dpkg-shlibdeps: the package's Depends from the binary
   file                 # CPack's DEB generator finds the binaries to give dpkg-shlibdeps
+  pybind11-dev python3-dev # the Python module the package carries (python/)
 )
 # Tests, benches, fuzzing and CI.
 develop=(
@@ -44,7 +45,6 @@ develop=(
   clang-tidy           # bug-prone patterns and function size, scripts/lint.sh
   man-db groff-base    # the man pages rendered without a warning (tests/cli/man_pages.sh)
   zsh                  # the zsh completion checked (tests/cli/completion_zsh.zsh)
-  pybind11-dev python3-dev # the Python module (python/), built when they are there
   python3-pytest       # its tests (tests/python/)
   python3-matplotlib   # its example (examples/python/), drawn without a display
 )
