@@ -2,6 +2,7 @@
 // (python/mpcal/__init__.py) checks the arguments, names them in its
 // messages and documents them; this file converts and calls the library,
 // without the GIL while it works.
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -174,23 +175,19 @@ CalibrateOptions CalibrateOptionsFrom(const py::dict& o, const py::object& gravi
   return c;
 }
 
-Calibration Calibrate(const Rows& t,
-                      const Rows& accel,
-                      const py::object& gyro,
-                      const std::string& units,
-                      const std::string& gyro_units,
-                      const py::object& gravity,
-                      const py::dict& options,
-                      const std::string& provenance) {
+Calibration CalibrateShared(std::shared_ptr<const Recording> recording,
+                            const py::object& gravity,
+                            const py::dict& options,
+                            const std::string& provenance) {
   const CalibrateOptions c = CalibrateOptionsFrom(options, gravity);
-  Recording recording = ToRecording(t, accel, gyro, units, gyro_units);
-  if (c.counts_per_g > 0.0 && recording.units != AccelUnits::kCounts) {
+  if (c.counts_per_g > 0.0 && recording->units != AccelUnits::kCounts) {
     throw Error(ErrorKind::kOption,
                 "counts_per_g is the scale of raw counts: it goes with units='counts'",
                 Suggest(Option::kLogUnits, "counts"));
   }
-  CalibrateResult result = Interruptible(
-      [recording = std::move(recording), c] { return CalibrateRecording(recording, c); });
+  CalibrateResult result = Interruptible([recording = std::move(recording), c] {
+    return CalibrateRecording(*recording, c);
+  });
   if (!result.solve.converged()) {
     throw Error(ErrorKind::kSession,
                 fmt::format("the fit did not converge ({}); check the positions with "
@@ -200,6 +197,23 @@ Calibration Calibrate(const Rows& t,
   }
   result.calibration.provenance = Provenance{MPCAL_VERSION, "<arrays>", provenance};
   return std::move(result.calibration);
+}
+
+// Arrays of the caller's: copied into the rows the library takes.
+Calibration Calibrate(const Rows& t,
+                      const Rows& accel,
+                      const py::object& gyro,
+                      const std::string& units,
+                      const std::string& gyro_units,
+                      const py::object& gravity,
+                      const py::dict& options,
+                      const std::string& provenance) {
+  CalibrateOptionsFrom(options, gravity);  // bad options before the copy
+  return CalibrateShared(
+      std::make_shared<const Recording>(ToRecording(t, accel, gyro, units, gyro_units)),
+      gravity,
+      options,
+      provenance);
 }
 
 // accel (N×3, the calibration's input units) corrected into `out` (N×3 m/s²);
@@ -258,7 +272,9 @@ PYBIND11_MODULE(_mpcal, m) {
   m.attr("__version__") = MPCAL_VERSION;
   RegisterErrorTranslator();
 
-  py::class_<Recording>(m, "Recording")
+  // Held by a shared pointer: a call that Ctrl-C interrupted may still be
+  // reading the rows on its own thread.
+  py::class_<Recording, std::shared_ptr<Recording>>(m, "Recording")
       .def_property_readonly("t",
                              [](py::object self) {
                                const auto& r = self.cast<const Recording&>();
@@ -301,6 +317,14 @@ PYBIND11_MODULE(_mpcal, m) {
   m.def("_read_log", &ReadLogFrom);
   m.def("_read_log_defaults", &ReadLogDefaults);
   m.def("_calibrate", &Calibrate);
+  // The rows of a Recording as they are (its own arrays): no copy.
+  m.def("_calibrate_recording",
+        [](std::shared_ptr<Recording> recording,
+           const py::object& gravity,
+           const py::dict& options,
+           const std::string& provenance) {
+          return CalibrateShared(std::move(recording), gravity, options, provenance);
+        });
   m.def("_calibrate_defaults", &CalibrateDefaults);
   m.def("_load_calibration", [](const std::string& path) {
     const py::gil_scoped_release unlocked;

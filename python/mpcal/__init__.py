@@ -83,6 +83,27 @@ def _rows(name, values, columns):
     return a
 
 
+def _same_memory(a, b):
+    return (isinstance(a, np.ndarray) and a.shape == b.shape and a.strides == b.strides
+            and a.__array_interface__["data"][0] == b.__array_interface__["data"][0])
+
+
+def _recording_of(t, accel, gyro, units, gyro_units):
+    """The Recording whose own arrays these are (read_log's, a simulation's),
+    with the units given, so that the library takes its rows as they are;
+    else None (the arrays are copied)."""
+    recording = getattr(accel, "base", None)
+    if not isinstance(recording, Recording) or units != recording.units:
+        return None
+    if not (_same_memory(accel, recording.accel) and _same_memory(t, recording.t)):
+        return None
+    if gyro is None:
+        return recording if recording.gyro is None else None
+    if recording.gyro is None or gyro_units != recording.gyro_units:
+        return None
+    return recording if _same_memory(gyro, recording.gyro) else None
+
+
 def _same_length(**arrays):
     lengths = {k: len(v) for k, v in arrays.items() if v is not None}
     if len(set(lengths.values())) > 1:
@@ -164,6 +185,10 @@ def calibrate(t, accel, gyro=None, units="mps2", gravity=None, gyro_units="rads"
     fitted sphere), ``gyro_window_s`` (1.0 s), ``gyro_g_sensitivity``
     ("auto", "on", "off"), ``calibrate_gyroscope`` (True).
 
+    The arrays :func:`read_log` and :func:`simulate_static` return are the
+    library's own rows, taken as they are; other arrays are checked and
+    copied (float64, C order) into the rows the library takes.
+
     Returns a :class:`Calibration` whose attributes mirror the calibration
     file ``mpcal calibrate -o`` writes. Its warnings are also issued as
     :class:`MpcalWarning`. Raises :class:`Error` when the session cannot be
@@ -172,16 +197,23 @@ def calibrate(t, accel, gyro=None, units="mps2", gravity=None, gyro_units="rads"
     malformed (naming it).
     """
     options = _options("calibrate", options, _CALIBRATE_DEFAULTS)
+    if gravity is not None and not math.isfinite(float(gravity)):
+        raise Error(f"gravity: {gravity} is not a number of m/s²", kind="option",
+                    advice={"gravity": None})
+    provenance = _arrays_provenance(units, gravity, options)
+    recording = _recording_of(t, accel, gyro, units, gyro_units)
+    if recording is not None:
+        native = _mpcal._calibrate_recording(recording, gravity, options, provenance)
+        result = Calibration(native)
+        _warn(result.warnings)
+        return result
     t = _rows("t", t, 1)
     accel = _rows("accel", accel, 3)
     if gyro is not None:
         gyro = _rows("gyro", gyro, 3)
     _same_length(t=t, accel=accel, gyro=gyro)
-    if gravity is not None and not math.isfinite(float(gravity)):
-        raise Error(f"gravity: {gravity} is not a number of m/s²", kind="option",
-                    advice={"gravity": None})
     native = _mpcal._calibrate(t, accel, gyro, units, gyro_units, gravity, options,
-                               _arrays_provenance(units, gravity, options))
+                               provenance)
     result = Calibration(native)
     _warn(result.warnings)
     return result
