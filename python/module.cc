@@ -23,6 +23,7 @@
 #include "mpcal/gravity.h"
 #include "mpcal/gyro_log.h"
 #include "mpcal/log_reader.h"
+#include "noise.h"
 #include "simulate.h"
 
 namespace mpcal::python {
@@ -332,6 +333,7 @@ PYBIND11_MODULE(_mpcal, m) {
   });
   AddDetect(m);
   AddSimulate(m);
+  AddNoise(m);
 }
 
 }  // namespace mpcal::python

@@ -29,7 +29,7 @@ from . import _mpcal
 from ._errors import Error, MpcalWarning
 
 __all__ = ["Error", "MpcalWarning", "Recording", "Calibration", "Section", "read_log",
-           "detect", "calibrate", "load_calibration", "simulate_static", "Simulation",
+           "detect", "calibrate", "noise", "load_calibration", "simulate_static", "Simulation",
            "__version__"]
 
 __version__ = _mpcal.__version__
@@ -310,6 +310,48 @@ def simulate_static(**options):
     """
     options = _options("simulate_static", options, _SIMULATE_STATIC_DEFAULTS)
     return Simulation(*_mpcal._simulate_static(options))
+
+
+_NOISE_DEFAULTS = _mpcal._noise_defaults()
+
+
+def noise(t, accel, gyro=None, units="mps2", gyro_units="rads", gravity=None,
+          **options):
+    """The noise of a still record, as ``mpcal noise --json`` writes it:
+    the overlapping Allan deviation of every axis with its confidence band,
+    and the noise terms (quantisation, white noise, bias instability,
+    random walk, rate ramp) each with its interval and the τ region it was
+    fitted in.
+
+    t : array (N,), seconds, evenly sampled; accel : array (N, 3) in
+    ``units`` ("mps2" or "g"; raw counts have no unit: correct them first);
+    gyro : array (N, 3) in ``gyro_units`` ("rads" or "dps"), optional;
+    gravity : float (m/s², default 9.80665), to check the units by.
+
+    Options: ``whole`` (False: when the sensor moved, the longest still
+    part found by detection is analysed; True: every sample),
+    ``confidence`` (0.683: the level of the intervals), and the static
+    detection's options of :func:`detect`.
+
+    Returns a :class:`Section` of the mpcal.noise/1 document: ``segment``
+    (the rows analysed), ``rate_hz``, ``record_s``, ``accelerometer`` and
+    ``gyroscope`` (per axis: ``tau_s``, the Allan deviation and its band in
+    the sensor's SI units, the terms with their intervals and regions), and
+    the record lengths that would measure the terms only bounded.
+    """
+    defaults = {k: _CALIBRATE_DEFAULTS[k] for k in _DETECT_KEYS}
+    defaults.update(_NOISE_DEFAULTS)
+    options = _options("noise", options, defaults)
+    t = _rows("t", t, 1)
+    accel = _rows("accel", accel, 3)
+    if gyro is not None:
+        gyro = _rows("gyro", gyro, 3)
+    _same_length(t=t, accel=accel, gyro=gyro)
+    g = 9.80665 if gravity is None else float(gravity)
+    whole = bool(options.pop("whole"))
+    confidence = float(options.pop("confidence"))
+    return Section(_mpcal._noise(t, accel, gyro, units, gyro_units, g, whole, confidence,
+                                 options))
 
 
 def load_calibration(path):

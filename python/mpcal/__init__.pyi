@@ -119,3 +119,10 @@ def simulate_static(*, preset: str = ..., seed: int = ..., positions: int = ...,
                     units: AccelUnits = ..., counts_per_mps2: float = ...,
                     counts_offset: float = ..., gyro: bool = ..., gravity: float = ...
                     ) -> Simulation: ...
+
+def noise(t: ArrayLike, accel: ArrayLike, gyro: Optional[ArrayLike] = ...,
+          units: Literal["mps2", "g"] = ..., gyro_units: Literal["rads", "dps"] = ...,
+          gravity: Optional[float] = ..., *, whole: bool = ..., confidence: float = ...,
+          window_s: float = ..., min_static_s: float = ..., settle_s: float = ...,
+          threshold: float = ..., max_still_g: float = ..., merge_gap_s: float = ...,
+          merge_angle_deg: float = ..., range_g: float = ...) -> Section: ...
