@@ -275,36 +275,51 @@ PYBIND11_MODULE(_mpcal, m) {
 
   // Held by a shared pointer: a call that Ctrl-C interrupted may still be
   // reading the rows on its own thread.
-  py::class_<Recording, std::shared_ptr<Recording>>(m, "Recording")
-      .def_property_readonly("t",
-                             [](py::object self) {
-                               const auto& r = self.cast<const Recording&>();
-                               return ViewOf(r.time_s.data(), r.size(), 1, self);
-                             })
-      .def_property_readonly("accel",
-                             [](py::object self) {
-                               const auto& r = self.cast<const Recording&>();
-                               return ViewOf(
-                                   r.accel.empty() ? nullptr : r.accel.front().data(),
-                                   r.accel.size(),
-                                   3,
-                                   self);
-                             })
+  py::class_<Recording, std::shared_ptr<Recording>>(
+      m,
+      "Recording",
+      "A log in memory (mpcal.read_log, mpcal.simulate_static): read-only numpy views "
+      "of the rows the library holds, no copy.")
+      .def_property_readonly(
+          "t",
+          [](py::object self) {
+            const auto& r = self.cast<const Recording&>();
+            return ViewOf(r.time_s.data(), r.size(), 1, self);
+          },
+          "Time of each row (s, N), the log's own clock, strictly increasing.")
+      .def_property_readonly(
+          "accel",
+          [](py::object self) {
+            const auto& r = self.cast<const Recording&>();
+            return ViewOf(r.accel.empty() ? nullptr : r.accel.front().data(),
+                          r.accel.size(),
+                          3,
+                          self);
+          },
+          "Accelerometer readings (N×3: x, y, z) in `units`.")
       .def_property_readonly(
           "gyro",
           [](py::object self) -> py::object {
             const auto& r = self.cast<const Recording&>();
             if (r.gyro_radps.empty()) return py::none();
             return ViewOf(r.gyro_radps.front().data(), r.gyro_radps.size(), 3, self);
-          })
+          },
+          "Gyroscope readings (N×3) in rad/s (a log in deg/s converted on reading), or "
+          "raw counts when `gyro_units` is 'counts'; None without a gyroscope.")
       .def_property_readonly(
-          "units", [](const Recording& r) { return std::string(ToString(r.units)); })
+          "units",
+          [](const Recording& r) { return std::string(ToString(r.units)); },
+          "Units of `accel`: 'mps2', 'g' or 'counts'.")
       .def_property_readonly(
           "gyro_units",
-          [](const Recording& r) { return std::string(ToString(r.gyro_units)); })
-      .def_readonly("source", &Recording::source)
-      .def_readonly("warnings", &Recording::warnings)
-      .def("__len__", &Recording::size);
+          [](const Recording& r) { return std::string(ToString(r.gyro_units)); },
+          "Units of `gyro`: 'rads' or 'counts'.")
+      .def_readonly("source", &Recording::source, "Where the rows came from (a path).")
+      .def_readonly(
+          "warnings",
+          &Recording::warnings,
+          "The reader's findings: gaps, duplicated times, a truncated last line.")
+      .def("__len__", &Recording::size, "Rows.");
 
   py::class_<Calibration>(m, "Calibration")
       .def("_json", &CalibrationToJson)

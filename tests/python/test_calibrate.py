@@ -97,6 +97,16 @@ def test_imu_from_two_files_equals_the_commands(cli_imu):
     assert g.input.radps_per_unit == pytest.approx(cli_g["input"]["radps_per_unit"],
                                                    rel=RTOL)
 
+    # The gyroscope's correction, written from the IMU file's fields
+    # (docs/formats.md): ω = M (r k − b − G f), f the corrected specific force.
+    a_mps2, w_radps = imu.correct(rec.accel, rec.gyro)
+    m = np.asarray(cli_g["m"]).reshape(3, 3)
+    b = np.asarray(cli_g["bias_radps"])
+    k = cli_g["input"]["radps_per_unit"]
+    g_sens = np.asarray(cli_g.get("g_sensitivity_radps_per_mps2", np.zeros(9))).reshape(3, 3)
+    expected = (rec.gyro * k - b - a_mps2 @ g_sens.T) @ m.T
+    np.testing.assert_allclose(w_radps, expected, rtol=1e-9, atol=1e-12)
+
 
 def method_correction(p, y_mps2):
     """docs/method.md §2.1, eqs 8-10, written out: a = T diag(1/(1+s)) (Y - b)."""
