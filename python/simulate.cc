@@ -1,10 +1,14 @@
 // mpcal.simulate_static on arrays: a hand-held session with its truth.
 #include "simulate.h"
 
+#include <array>
+#include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <pybind11/stl.h>
 
 #include "arrays.h"
@@ -13,6 +17,7 @@
 #include "mpcal/error.h"
 #include "mpcal/gravity.h"
 #include "mpcal/simulate.h"
+#include "mpcal/simulate_noise.h"
 
 namespace mpcal::python {
 namespace {
@@ -81,9 +86,69 @@ py::tuple SimulateStaticFrom(const py::dict& o) {
                         rate);
 }
 
+py::dict TruthOf(const std::array<AxisNoiseTruth, 3>& axes,
+                 const char* n,
+                 const char* b,
+                 const char* k) {
+  py::dict d;
+  std::vector<double> white, instability, walk;
+  for (const AxisNoiseTruth& a : axes) {
+    white.push_back(a.white_noise);
+    instability.push_back(a.bias_instability);
+    walk.push_back(a.random_walk);
+  }
+  d[n] = white;
+  d[b] = instability;
+  d[k] = walk;
+  return d;
+}
+
+// (recording (m/s², rad/s), truth {accelerometer: {...}, gyroscope: {...}}).
+py::tuple SimulateNoiseFrom(const std::string& preset,
+                            double duration_s,
+                            double rate_hz,
+                            std::uint64_t seed) {
+  std::optional<NoiseSimulationOptions> options = NoisePreset(preset);
+  if (!options) {
+    throw Error(ErrorKind::kOption,
+                fmt::format("preset='{}' is not a noise preset: give one of {}",
+                            preset,
+                            fmt::join(NoisePresetNames(), ", ")));
+  }
+  options->duration_s = duration_s;
+  options->rate_hz = rate_hz;
+  options->seed = seed;
+  if (const std::string bad = options->Validate(); !bad.empty()) {
+    throw Error(ErrorKind::kOption, "simulate_noise: " + bad);
+  }
+  Recording recording = Interruptible([o = *options] {
+    NoiseGenerator generator(o);
+    Recording r;
+    r.source = "<simulated>";
+    r.time_s.resize(generator.rows());
+    r.accel.resize(generator.rows());
+    r.gyro_radps.resize(generator.rows());
+    for (std::size_t i = 0; i < generator.rows(); ++i) {
+      generator.Next(&r.time_s[i], &r.accel[i], &r.gyro_radps[i]);
+    }
+    return r;
+  });
+  py::dict truth;
+  truth["accelerometer"] = TruthOf(options->accel_mps2,
+                                   "white_noise_mps2_per_rthz",
+                                   "bias_instability_mps2",
+                                   "random_walk_mps3_per_rthz");
+  truth["gyroscope"] = TruthOf(options->gyro_radps,
+                               "white_noise_radps_per_rthz",
+                               "bias_instability_radps",
+                               "random_walk_radps2_per_rthz");
+  return py::make_tuple(py::cast(std::move(recording)), truth);
+}
+
 }  // namespace
 
 void AddSimulate(py::module_& m) {
+  m.def("_simulate_noise", &SimulateNoiseFrom);
   m.def("_simulate_static", &SimulateStaticFrom);
   m.def("_simulate_static_defaults", &SimulateStaticDefaults);
   m.def("_presets", &PresetNames);

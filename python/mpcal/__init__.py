@@ -29,7 +29,7 @@ from . import _mpcal
 from ._errors import Error, MpcalWarning
 
 __all__ = ["Error", "MpcalWarning", "Recording", "Calibration", "Section", "read_log",
-           "detect", "calibrate", "noise", "load_calibration", "simulate_static", "Simulation",
+           "detect", "calibrate", "noise", "load_calibration", "simulate_static", "simulate_noise", "Simulation",
            "__version__"]
 
 __version__ = _mpcal.__version__
@@ -310,6 +310,22 @@ def simulate_static(**options):
     """
     options = _options("simulate_static", options, _SIMULATE_STATIC_DEFAULTS)
     return Simulation(*_mpcal._simulate_static(options))
+
+
+def simulate_noise(preset="consumer", duration_s=3600.0, rate_hz=100.0, seed=1):
+    """Simulate a still record with known noise terms, as ``mpcal simulate
+    noise`` does: per axis white noise, bias instability (flicker) and
+    random walk, on gravity along +z and a small gyroscope bias.
+
+    preset : "consumer" (phone/drone MEMS) or "industrial"; duration_s (s);
+    rate_hz (Hz); seed (the same record on every machine).
+
+    Returns ``(recording, truth)``: a :data:`Recording` (``t`` s, ``accel``
+    m/s², ``gyro`` rad/s) and the true terms per axis (x, y, z), e.g.
+    ``truth["accelerometer"]["white_noise_mps2_per_rthz"]``.
+    """
+    return _mpcal._simulate_noise(str(preset), float(duration_s), float(rate_hz),
+                                  int(seed))
 
 
 _NOISE_DEFAULTS = _mpcal._noise_defaults()

@@ -80,3 +80,14 @@ def test_raw_counts_have_no_noise_unit():
     with pytest.raises(mpcal.Error) as caught:
         mpcal.noise(t, np.full((1000, 3), 32768.0), units="counts")
     assert caught.value.kind == "units"
+
+
+def test_simulate_noise_equals_the_commands_record(still):
+    rec, _, truth = still
+    simulated, true = mpcal.simulate_noise("consumer", duration_s=900, rate_hz=100, seed=1)
+    assert len(simulated) == len(rec)
+    # The command writes 9 significant digits: half a unit of the last.
+    np.testing.assert_allclose(simulated.accel, rec.accel, rtol=5.01e-9, atol=0)
+    np.testing.assert_allclose(simulated.gyro, rec.gyro, rtol=5.01e-9, atol=0)
+    np.testing.assert_allclose(true["accelerometer"]["white_noise_mps2_per_rthz"],
+                               truth["accelerometer"]["white_noise_mps2_per_rthz"], rtol=1e-15)
