@@ -206,3 +206,19 @@ def test_detect_says_what_to_change_when_positions_are_too_short():
     for i, interval in enumerate(found.intervals):
         start = i * (hold + turn) / rate_hz
         assert start <= interval.start_s < interval.end_s <= start + hold / rate_hz
+
+
+@pytest.mark.parametrize("name", ["imu_lz4.bag", "imu_cdr_zstd.mcap", "imu_ros2"])
+def test_bags_are_read_and_their_time_order_checked(name):
+    # Each holds the rows of session.csv as sensor_msgs/Imu on /imu/data,
+    # written by python3-rosbag, @mcap/core or sqlite3 (tests/data/bags/),
+    # with the stamps of rows 100 and 101 swapped: the reader reads them and
+    # refuses the stamp that goes back, as it does for a text log.
+    bags = XSENS_ACC.parents[2] / "bags"
+    with pytest.raises(mpcal.Error) as caught:
+        mpcal.read_log(bags / name, topic="/imu/data")
+    assert caught.value.kind == "time"
+    assert f"{name}:102: time goes back: 5 s after 5.05 s on message 101" in str(caught.value)
+    with pytest.raises(mpcal.Error) as caught:
+        mpcal.read_log(bags / name, topic="/no/such/topic")
+    assert "/imu/data" in str(caught.value)  # the topics it has
