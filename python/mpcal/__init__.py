@@ -10,11 +10,12 @@ and gyroscopes (from the turns between the positions), on numpy arrays.
 Units are in the names: ``t`` in seconds, accelerometer readings in the
 units given (``"mps2"``, ``"g"`` or raw ``"counts"``), gyroscope readings in
 rad/s (``"rads"``), deg/s (``"dps"``) or ``"counts"``. Arrays are N×3
-(x, y, z per row), any real dtype, converted to float64 (no copy when they
-are float64 in C order already).
+(x, y, z per row) of any real dtype; the arrays :func:`read_log` and
+:func:`simulate_static` return are the library's own rows, taken as they
+are, and others are checked and copied.
 
 Bad input raises :class:`mpcal.Error` (a ValueError) with ``kind``,
-``advice`` (the keyword arguments that would fix it) and ``figures``;
+``advice`` (the keyword arguments the message speaks of) and ``figures``;
 findings that do not stop the work are issued as :class:`MpcalWarning`.
 """
 
