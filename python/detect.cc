@@ -31,9 +31,11 @@ std::string OutcomeName(DetectOutcome kind) {
   return "found";
 }
 
-py::dict Finding(std::string kind, const std::string& sentence, const Advice& advice) {
+py::dict Finding(const std::string& kind,
+                 const std::string& sentence,
+                 const Advice& advice) {
   py::dict d;
-  d["kind"] = std::move(kind);
+  d["kind"] = kind;
   d["message"] = sentence;
   d["advice"] = AdviceSettings(advice);
   d["stage"] = StageOf(advice);

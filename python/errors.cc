@@ -182,6 +182,8 @@ py::object StageOf(const Advice& advice) {
 }
 
 void RegisterErrorTranslator() {
+  // pybind11's translator type takes the exception_ptr by value.
+  // NOLINTNEXTLINE(performance-unnecessary-value-param)
   py::register_exception_translator([](std::exception_ptr thrown) {
     try {
       if (thrown) std::rethrow_exception(thrown);

@@ -282,14 +282,14 @@ PYBIND11_MODULE(_mpcal, m) {
       "of the rows the library holds, no copy.")
       .def_property_readonly(
           "t",
-          [](py::object self) {
+          [](const py::object& self) {
             const auto& r = self.cast<const Recording&>();
             return ViewOf(r.time_s.data(), r.size(), 1, self);
           },
           "Time of each row (s, N), the log's own clock, strictly increasing.")
       .def_property_readonly(
           "accel",
-          [](py::object self) {
+          [](const py::object& self) {
             const auto& r = self.cast<const Recording&>();
             return ViewOf(r.accel.empty() ? nullptr : r.accel.front().data(),
                           r.accel.size(),
@@ -299,7 +299,7 @@ PYBIND11_MODULE(_mpcal, m) {
           "Accelerometer readings (N×3: x, y, z) in `units`.")
       .def_property_readonly(
           "gyro",
-          [](py::object self) -> py::object {
+          [](const py::object& self) -> py::object {
             const auto& r = self.cast<const Recording&>();
             if (r.gyro_radps.empty()) return py::none();
             return ViewOf(r.gyro_radps.front().data(), r.gyro_radps.size(), 3, self);
