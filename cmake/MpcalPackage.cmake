@@ -13,14 +13,19 @@ set(CPACK_PACKAGE_DESCRIPTION
 multi-position method (gravity's magnitude is the only reference), the
 gyroscope from the turns between the positions, the noise by Allan deviation.
 The package holds the mpcal command with its man pages and bash and zsh
-completion, and the C++ library with its headers and CMake package
-(find_package(mpcal)).")
+completion, the C++ library with its headers and CMake package
+(find_package(mpcal)), and the Python module mpcal (import mpcal).")
 set(MPCAL_PACKAGE_CONTACT "mpcal maintainers <maintainers@users.noreply.h-seed-34f1b310.example>"
     CACHE STRING "Maintainer field of the Debian package")
 set(CPACK_PACKAGE_CONTACT "${MPCAL_PACKAGE_CONTACT}")
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+# The Python module (built when pybind11 was found) imports numpy; the
+# command does not need it.
+if(TARGET _mpcal)
+  set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3-numpy")
+endif()
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS
     "libeigen3-dev, libceres-dev, libgeographiclib-dev, nlohmann-json3-dev, libfmt-dev, libfast-float-dev")
 # `make package_source` (which include(CPack) adds): the tracked tree as a

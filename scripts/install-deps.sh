@@ -30,6 +30,7 @@ demo=(
 package=(
   dpkg-dev             # dpkg-shlibdeps: the package's Depends from the binary
   file                 # CPack's DEB generator finds the binaries to give dpkg-shlibdeps
+  pybind11-dev python3-dev # the Python module the package carries (python/)
 )
 # Tests, benches, fuzzing and CI.
 develop=(
@@ -47,6 +48,8 @@ develop=(
   clang-tidy           # bug-prone patterns and function size, scripts/lint.sh
   man-db groff-base    # the man pages rendered without a warning (tests/cli/man_pages.sh)
   zsh                  # the zsh completion checked (tests/cli/completion_zsh.zsh)
+  python3-pytest       # its tests (tests/python/)
+  python3-matplotlib   # its example (examples/python/), drawn without a display
 )
 
 case ${1:-all} in

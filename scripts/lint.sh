@@ -3,7 +3,8 @@
 #   1. every C++ file is clang-format clean (.clang-format);
 #   2. no file in src/ is over 600 lines;
 #   3. clang-tidy (.clang-tidy: bugprone-*, performance-*, functions of
-#      cognitive complexity <= 40 and <= 80 lines) is clean on src/ and apps/.
+#      cognitive complexity <= 40 and <= 80 lines) is clean on src/, apps/
+#      and python/.
 # usage: scripts/lint.sh [BUILD_DIR]   (clang-tidy's compile commands go to
 #        BUILD_DIR/tidy-commands)
 set -euo pipefail
@@ -40,6 +41,10 @@ rm -f /tmp/mpcal-configure.$$
 # The one generated header a source includes (`mpcal --version`'s revision).
 cmake --build "$commands" --target mpcal_git_revision >/dev/null
 mapfile -t sources < <(git ls-files 'src/*.cc' 'apps/*.cc')
+# The Python module's, when it is configured (pybind11-dev is there).
+if grep -q '/python/module.cc"' "$commands/compile_commands.json"; then
+  mapfile -t -O "${#sources[@]}" sources < <(git ls-files 'python/*.cc')
+fi
 if ! run-clang-tidy -quiet -p "$commands" -j "$(nproc)" "${sources[@]/#/$PWD/}" \
     >/tmp/mpcal-tidy.$$ 2>&1; then
   grep -E 'warning:|error:' /tmp/mpcal-tidy.$$ | sort -u >&2 || cat /tmp/mpcal-tidy.$$ >&2

@@ -67,5 +67,16 @@ done
 if [ -z "$(find "$root/usr/lib" -name mpcalConfig.cmake)" ]; then
   echo "FAIL: the package has no mpcalConfig.cmake"; fail=1
 fi
+# The Python module, when the build made one: it imports from the package.
+if [ -d "$build/python/mpcal" ]; then
+  init=$(find "$root/usr/lib" -path '*-packages/mpcal/__init__.py' | head -n1)
+  if [ -z "$init" ]; then
+    echo "FAIL: the package has no Python module mpcal"; fail=1
+  elif ! version=$(cd "$scratch/run" && PYTHONPATH=$(dirname "$(dirname "$init")") \
+                     /usr/bin/python3 -c 'import mpcal; print(mpcal.__version__)' 2>&1) ||
+       [ "$version" != "$("$build/mpcal" --version | awk '{print $2}')" ]; then
+    echo "FAIL: import mpcal from the package: $version"; fail=1
+  fi
+fi
 [ $fail -eq 0 ] && echo "package checked"
 exit $fail

@@ -1,0 +1,33 @@
+// The C++ side of bench/python_bench.sh: the session the Python bench
+// calibrates (simulated in memory with the same options and seed, 1.7 M
+// rows), calibrated by CalibrateRecording REPS times.
+//
+//   mpcal_calibrate_floor REPS
+//
+// Prints one line per run: the seconds CalibrateRecording took (steady
+// clock), and the bias x (m/s²) so that the two sides can be seen to agree.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+
+#include "mpcal/calibrate.h"
+#include "mpcal/simulate.h"
+
+int main(int argc, char** argv) {
+  const int reps = argc > 1 ? std::atoi(argv[1]) : 5;
+  mpcal::SimulateStaticOptions options;
+  options.device = mpcal::FindPreset("mti-g");
+  options.seed = 1;
+  options.rate_hz = 1000.0;
+  options.dwell_s = 60.0;
+  options.initial_rest_s = 88.0;
+  const mpcal::SimulatedSession session = mpcal::SimulateStatic(options);
+  for (int i = 0; i < reps; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    const mpcal::CalibrateResult result =
+        mpcal::CalibrateRecording(session.recording, mpcal::CalibrateOptions{});
+    const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
+    std::printf("%.6f %.12g\n", took.count(), result.calibration.model.bias_mps2.x());
+  }
+  return 0;
+}

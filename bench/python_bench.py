@@ -1,0 +1,102 @@
+"""The Python module's two speed targets (bench/python_bench.sh).
+
+  python_bench.py BUILD_DIR REPETITIONS
+
+Each figure is the median of the runs; the Python and C++ runs alternate so
+that a shared machine's load falls on both alike.
+"""
+import math
+import statistics
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+import mpcal
+
+
+def calibrate_ratio(build, reps):
+    # The session of bench/speed_bench.sh: 1 kHz, 26 positions of 60 s, 88 s
+    # of rest: 1.7 M rows (calibrate_floor.cc simulates the same). Two kinds
+    # of arrays: the simulation's own (views of the rows the library holds,
+    # as read_log's are: taken as they are) and copies of them (arrays of
+    # the caller's: checked and copied into the library's rows).
+    session = mpcal.simulate_static(seed=1, rate_hz=1000, dwell_s=60, initial_rest_s=88)
+    t_copy, accel_copy = np.array(session.t), np.array(session.accel)
+    own, copied, cpp, biases = [], [], [], set()
+
+    def timed(t, accel):
+        for _ in range(2):  # the second of two: the first warms the caches
+            start = time.perf_counter()
+            cal = mpcal.calibrate(t, accel)
+            took = time.perf_counter() - start
+        biases.add(float(cal.bias_mps2[0]))
+        return took, cal
+
+    # One run of each in turn, so that a shared machine's load falls on all
+    # alike.
+    for _ in range(reps):
+        out = subprocess.run([f"{build}/bench/mpcal_calibrate_floor", "2"],
+                             check=True, capture_output=True, text=True).stdout
+        seconds, bias = out.split("\n")[1].split()
+        cpp.append(float(seconds))
+        biases.add(float(bias))
+        took, cal = timed(session.t, session.accel)
+        own.append(took)
+        copied.append(timed(t_copy, accel_copy)[0])
+    c = statistics.median(cpp)
+    same = max(biases) - min(biases) <= 1e-9 * max(abs(b) for b in biases)
+    print(f"calibrate, {len(session.t)} rows: CalibrateRecording in C++ {c:.3f} s; "
+          f"same bias x on every path: {'yes' if same else 'NO'}")
+    for name, runs in (("the library's own arrays (read_log, simulate_static)", own),
+                       ("arrays of the caller's (copied)", copied)):
+        ratio = statistics.median(runs) / c
+        print(f"  mpcal.calibrate on {name}: {statistics.median(runs):.3f} s, ratio "
+              f"{ratio:.3f} (target <= 1.10): {'PASS' if ratio <= 1.10 else 'FAIL'}")
+    return cal
+
+
+def affine_of(cal):
+    """a = L y + o from the file's parameters (docs/method.md §2.1):
+    L = T diag(1/(1+s)) k, o = -T diag(1/(1+s)) b."""
+    yz, zx, zy = (cal.non_orthogonality_rad[k] for k in ("yz", "zx", "zy"))
+    t = np.array([
+        [1, 0, 0],
+        [math.tan(yz), 1 / math.cos(yz), 0],
+        [math.tan(zx) * math.tan(yz) - math.tan(zy) / math.cos(zx),
+         math.tan(zx) / math.cos(yz), 1 / (math.cos(zx) * math.cos(zy))]])
+    t_over_s = t @ np.diag(1 / (1 + cal.scale_factor_error))
+    return t_over_s * cal.input.mps2_per_unit, -t_over_s @ cal.bias_mps2
+
+
+def correct_ratio(cal, reps, rows=10_000_000):
+    rng = np.random.default_rng(1)
+    y = rng.normal(scale=9.8, size=(rows, 3))
+    linear, offset = affine_of(cal)
+    py, ref = [], []
+    for _ in range(2):
+        for _ in range(reps):
+            start = time.perf_counter()
+            expected = y @ linear.T + offset
+            ref.append(time.perf_counter() - start)
+        for _ in range(reps):
+            start = time.perf_counter()
+            corrected, _ = cal.correct(y)
+            py.append(time.perf_counter() - start)
+    ratio = statistics.median(py) / statistics.median(ref)
+    agree = np.allclose(corrected, expected, rtol=1e-12, atol=1e-12)
+    print(f"correct, {rows} rows: Calibration.correct {statistics.median(py):.3f} s, "
+          f"numpy's y @ L.T + o {statistics.median(ref):.3f} s: ratio {ratio:.3f} "
+          f"(target <= 1.50): {'PASS' if ratio <= 1.5 else 'FAIL'}; "
+          f"same values: {'yes' if agree else 'NO'}")
+
+
+def main():
+    build, reps = sys.argv[1], int(sys.argv[2])
+    cal = calibrate_ratio(build, reps)
+    correct_ratio(cal, reps)
+
+
+if __name__ == "__main__":
+    main()

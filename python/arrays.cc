@@ -1,0 +1,92 @@
+#include "arrays.h"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "errors.h"
+#include "mpcal/advice.h"
+#include "mpcal/error.h"
+#include "mpcal/units.h"
+
+namespace mpcal::python {
+
+// A Vector3d is three doubles with no padding, so a vector of them is an
+// N×3 C-order array and numpy can look at it in place.
+static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double));
+
+py::array ViewOf(const double* values, std::size_t rows, int columns, py::handle owner) {
+  const auto n = static_cast<py::ssize_t>(rows);
+  py::array view;
+  if (columns == 1) {
+    view = py::array_t<double>(
+        {n}, {static_cast<py::ssize_t>(sizeof(double))}, values, owner);
+  } else {
+    const auto c = static_cast<py::ssize_t>(columns);
+    view = py::array_t<double>({n, c},
+                               {static_cast<py::ssize_t>(sizeof(double)) * c,
+                                static_cast<py::ssize_t>(sizeof(double))},
+                               values,
+                               owner);
+  }
+  view.attr("setflags")(py::arg("write") = false);
+  return view;
+}
+
+std::vector<Eigen::Vector3d> ToVectors(const Rows& rows) {
+  std::vector<Eigen::Vector3d> out(static_cast<std::size_t>(rows.shape(0)));
+  if (!out.empty()) std::copy_n(rows.data(), 3 * out.size(), out.front().data());
+  return out;
+}
+
+AccelUnits AccelUnitsArgument(const std::string& name, const char* argument) {
+  const auto units = ParseAccelUnits(name);
+  if (!units) {
+    throw Error(ErrorKind::kOption,
+                fmt::format("{}='{}' is not a unit of acceleration: give 'mps2', 'g' or "
+                            "'counts'",
+                            argument,
+                            name),
+                Suggest(Option::kLogUnits, ""));
+  }
+  return *units;
+}
+
+GyroUnits GyroUnitsArgument(const std::string& name, const char* argument) {
+  const auto units = ParseGyroUnits(name);
+  if (!units) {
+    throw Error(
+        ErrorKind::kOption,
+        fmt::format("{}='{}' is not a unit of angular rate: give 'rads', 'dps' or "
+                    "'counts'",
+                    argument,
+                    name),
+        Suggest(Option::kLogGyroUnits, ""));
+  }
+  return *units;
+}
+
+Recording ToRecording(const Rows& t,
+                      const Rows& accel,
+                      const py::object& gyro,
+                      const std::string& units,
+                      const std::string& gyro_units) {
+  Recording recording;
+  recording.source = "<arrays>";
+  recording.units = AccelUnitsArgument(units, "units");
+  recording.time_s.assign(t.data(), t.data() + t.shape(0));
+  recording.accel = ToVectors(accel);
+  if (!gyro.is_none()) {
+    const GyroUnits given = GyroUnitsArgument(gyro_units, "gyro_units");
+    recording.gyro_radps = ToVectors(gyro.cast<Rows>());
+    recording.gyro_log_units = given;
+    recording.gyro_units =
+        given == GyroUnits::kCounts ? GyroUnits::kCounts : GyroUnits::kRadps;
+    if (const auto radps = FixedRadpsPerUnit(given); radps && *radps != 1.0) {
+      for (Eigen::Vector3d& w : recording.gyro_radps) w *= *radps;
+    }
+  }
+  return recording;
+}
+
+}  // namespace mpcal::python

@@ -1,0 +1,97 @@
+// mpcal.detect on arrays: the static positions, the coverage of the sphere
+// and the findings, as plain Python data (the package wraps them).
+#include "detect.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "arrays.h"
+#include "errors.h"
+#include "interrupt.h"
+#include "mpcal/calibrate.h"
+#include "mpcal/coverage.h"
+#include "mpcal/detect.h"
+
+namespace mpcal::python {
+namespace {
+
+std::string OutcomeName(DetectOutcome kind) {
+  switch (kind) {
+    case DetectOutcome::kFound:
+      return "found";
+    case DetectOutcome::kNeverStill:
+      return "never_still";
+    case DetectOutcome::kTooShort:
+      return "too_short";
+    case DetectOutcome::kAllClipped:
+      return "all_clipped";
+  }
+  return "found";
+}
+
+py::dict Finding(const std::string& kind,
+                 const std::string& sentence,
+                 const Advice& advice) {
+  py::dict d;
+  d["kind"] = kind;
+  d["message"] = sentence;
+  d["advice"] = AdviceSettings(advice);
+  d["stage"] = StageOf(advice);
+  return d;
+}
+
+py::dict Detect(const Rows& t,
+                const Rows& accel,
+                const std::string& units,
+                double gravity_mps2,
+                const py::dict& o) {
+  Recording recording = ToRecording(t, accel, py::none(), units, "rads");
+  DetectOptions options;
+  options.window_s = o["window_s"].cast<double>();
+  options.min_static_s = o["min_static_s"].cast<double>();
+  options.settle_s = o["settle_s"].cast<double>();
+  options.threshold_factor = o["threshold"].cast<double>();
+  options.max_still_g = o["max_still_g"].cast<double>();
+  options.merge_gap_s = o["merge_gap_s"].cast<double>();
+  options.merge_angle_deg = o["merge_angle_deg"].cast<double>();
+  options.range_mps2 = o["range_g"].cast<double>() * kStandardGravityMps2;
+  if (const std::string bad = options.Validate(); !bad.empty()) {
+    throw Error(ErrorKind::kOption, "detect: " + bad);
+  }
+  CoverageOptions coverage_options;
+  coverage_options.units = recording.units;
+  // The hold a new position needs, as `mpcal detect` advises it.
+  coverage_options.hold_s = std::max(
+      10.0, std::ceil(options.min_static_s + 2 * options.settle_s + options.window_s));
+  auto [detection, coverage] = Interruptible(
+      [recording = std::move(recording), options, coverage_options, gravity_mps2] {
+        CheckUnits(recording, gravity_mps2);
+        DetectResult found = DetectStatic(recording, options);
+        CoverageResult covered = AssessCoverage(found, coverage_options);
+        return std::pair{std::move(found), std::move(covered)};
+      });
+  // The document `mpcal detect --json` writes (mpcal.detection/1), with
+  // the outcome and the findings' advice as facts beside its sentences.
+  py::dict d = py::module_::import("json").attr("loads")(DetectionReportJson(
+      detection, coverage, coverage_options, "<arrays>", nullptr, {}));
+  d["outcome"] = Finding(OutcomeName(detection.finding.kind),
+                         Describe(detection.finding),
+                         detection.finding.advice);
+  py::list notes;
+  for (const DetectNote& n : detection.notes) {
+    notes.append(Finding(
+        n.kind == DetectNoteKind::kClippedPosition ? "clipped_position" : "not_still",
+        Describe(n),
+        n.advice));
+  }
+  d["findings"] = notes;
+  return d;
+}
+
+}  // namespace
+
+void AddDetect(py::module_& m) { m.def("_detect", &Detect); }
+
+}  // namespace mpcal::python
