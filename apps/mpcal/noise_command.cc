@@ -78,8 +78,16 @@ const char* TermLabel(NoiseTerm t, bool gyro) {
 
 std::string SiCell(const TermEstimate& e) {
   if (e.value) return fmt::format("{:.4g} [{:.3g}, {:.3g}]", *e.value, e.lo, e.hi);
-  if (e.upper_bound > 0.0) return fmt::format("< {:.3g} (not seen)", e.upper_bound);
-  return "not seen";
+  const char* why = e.status == TermStatus::kDisagrees ? "model misses" : "not seen";
+  if (e.upper_bound > 0.0) return fmt::format("< {:.3g} ({})", e.upper_bound, why);
+  return why;
+}
+
+// The model against the curve, one cell per axis.
+std::string CheckCell(const ModelCheck& c) {
+  if (c.points == 0) return "not checked";
+  return fmt::format(
+      "{} {} of {} outside", c.fits ? "fits:" : "MISSES:", c.outside, c.points);
 }
 
 std::string DatasheetCell(const TermEstimate& e, NoiseTerm t, bool gyro) {
@@ -109,6 +117,52 @@ void PrintSensor(const SensorNoise& s, bool gyro) {
     for (const AxisNoise& a : s.axes)
       fmt::print(" {:>30}", DatasheetCell(a.term(t), t, gyro));
     fmt::print("\n");
+  }
+  fmt::print("{:<22} {:<11}", "model vs curve", "τ points");
+  for (const AxisNoise& a : s.axes) fmt::print(" {:>30}", CheckCell(a.check));
+  fmt::print("\n");
+  bool excluded = false;
+  for (const AxisNoise& a : s.axes) excluded = excluded || a.check.excluded > 0;
+  if (!excluded) return;
+  fmt::print("{:<22} {:<11}", "fitted from τ", "s");
+  for (const AxisNoise& a : s.axes)
+    fmt::print(" {:>30}", fmt::format("{:.3g}", a.check.from_tau_s));
+  fmt::print("\n");
+}
+
+// Where the model misses the curve, and where the short-τ end was left out,
+// in words (always printed: a term read there would be wrong).
+void PrintModelCheck(const SensorNoise& s, bool gyro, double confidence) {
+  const char* sensor = gyro ? "gyroscope" : "accelerometer";
+  std::vector<std::string> misses, cut;
+  for (int i = 0; i < 3; ++i) {
+    const ModelCheck& c = s.axes[i].check;
+    const char axis = static_cast<char>('x' + i);
+    if (!c.fits) {
+      misses.push_back(fmt::format("{} ({} of {} cluster times, at {})",
+                                   axis,
+                                   c.outside,
+                                   c.points,
+                                   FormatTauRanges(c.disagree, 3)));
+    }
+    if (c.excluded > 0)
+      cut.push_back(fmt::format("{} from {:.3g} s", axis, c.from_tau_s));
+  }
+  if (!misses.empty()) {
+    fmt::print(
+        "{} model misses the curve (outside its {:.0f} % interval) on {}: the curve "
+        "shows an effect the IEEE terms lack (a filter, a Gauss-Markov bump, a "
+        "sinusoid, a ramp); the terms that dominate there are not measured.\n",
+        sensor,
+        100.0 * confidence,
+        fmt::join(misses, "; "));
+  }
+  if (!cut.empty()) {
+    fmt::print(
+        "{} short-τ end rolls off below the −½ slope (a low-pass filter): fitted {}; "
+        "the white noise is read where the −½ slope begins.\n",
+        sensor,
+        fmt::join(cut, ", "));
   }
 }
 
@@ -160,9 +214,19 @@ void PrintFindings(const SensorNoise& s, bool gyro, const NoiseResult& r) {
 // longer record would show it), do not use when not even the white noise
 // shows: the record is not still noise.
 void PrintSensorVerdict(const SensorNoise& s, bool gyro, const NoiseResult& r) {
-  std::vector<std::string> not_seen;
+  std::vector<std::string> not_seen, disagree;
   bool white_missing = false;
   std::optional<double> needed;
+  for (const NoiseTerm t : kTableTerms) {
+    std::vector<std::string> axes;
+    for (int i = 0; i < 3; ++i) {
+      if (s.axes[i].term(t).status == TermStatus::kDisagrees)
+        axes.emplace_back(1, static_cast<char>('x' + i));
+    }
+    if (!axes.empty())
+      disagree.push_back(
+          fmt::format("{} on {}", TermLabel(t, gyro), fmt::join(axes, ", ")));
+  }
   for (const NoiseTerm t :
        {NoiseTerm::kWhiteNoise, NoiseTerm::kBiasInstability, NoiseTerm::kRandomWalk}) {
     std::vector<std::string> axes;
@@ -179,15 +243,20 @@ void PrintSensorVerdict(const SensorNoise& s, bool gyro, const NoiseResult& r) {
       needed = std::max(needed.value_or(0.0), *n);
     }
   }
-  const Verdict verdict = white_missing      ? Verdict::kDoNotUse
-                          : not_seen.empty() ? Verdict::kGood
-                                             : Verdict::kLookAt;
+  const Verdict verdict = white_missing                          ? Verdict::kDoNotUse
+                          : not_seen.empty() && disagree.empty() ? Verdict::kGood
+                                                                 : Verdict::kLookAt;
   std::string why =
       not_seen.empty()
           ? std::string("every term measured or bounded as far as any record shows it")
           : fmt::format("not measured in this {} record: {}",
                         FormatRecordLength(r.record_s),
                         fmt::join(not_seen, "; "));
+  if (!disagree.empty()) {
+    why = fmt::format("the model misses the curve where these dominate: {}; {}",
+                      fmt::join(disagree, "; "),
+                      not_seen.empty() ? "the rest measured or bounded" : why);
+  }
   if (needed)
     why += fmt::format("; record at least {} to see them (if as large as their bounds)",
                        FormatRecordLength(*needed));
@@ -450,6 +519,8 @@ void Run(NoiseFlags& f) {
       "\nvalue [interval]; '< bound (not seen)': not measured, the largest value the "
       "record allows. Densities are continuous-time: per sample σ = N·√rate.\n");
   fmt::print("\n");
+  PrintModelCheck(r.accel_mps2, false, f.noise.allan.confidence);
+  if (r.gyro_radps) PrintModelCheck(*r.gyro_radps, true, f.noise.allan.confidence);
   PrintSensorVerdict(r.accel_mps2, false, r);
   if (r.gyro_radps) PrintSensorVerdict(*r.gyro_radps, true, r);
   if (f.verbose) {
