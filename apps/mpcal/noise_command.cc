@@ -17,6 +17,7 @@
 #include "command.h"
 #include "explain.h"
 #include "explain_detect.h"
+#include "explain_noise.h"
 #include "mpcal/apply.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
@@ -83,13 +84,6 @@ std::string SiCell(const TermEstimate& e) {
   return why;
 }
 
-// The model against the curve, one cell per axis.
-std::string CheckCell(const ModelCheck& c) {
-  if (c.points == 0) return "not checked";
-  return fmt::format(
-      "{} {} of {} outside", c.fits ? "fits:" : "MISSES:", c.outside, c.points);
-}
-
 std::string DatasheetCell(const TermEstimate& e, NoiseTerm t, bool gyro) {
   const double v = e.value ? *e.value : e.upper_bound;
   const noise_units::DatasheetValue d = noise_units::ToDatasheet(t, gyro, v);
@@ -119,7 +113,7 @@ void PrintSensor(const SensorNoise& s, bool gyro) {
     fmt::print("\n");
   }
   fmt::print("{:<22} {:<11}", "model vs curve", "τ points");
-  for (const AxisNoise& a : s.axes) fmt::print(" {:>30}", CheckCell(a.check));
+  for (const AxisNoise& a : s.axes) fmt::print(" {:>30}", ModelCheckCell(a.check));
   fmt::print("\n");
   bool excluded = false;
   for (const AxisNoise& a : s.axes) excluded = excluded || a.check.excluded > 0;
@@ -128,42 +122,6 @@ void PrintSensor(const SensorNoise& s, bool gyro) {
   for (const AxisNoise& a : s.axes)
     fmt::print(" {:>30}", fmt::format("{:.3g}", a.check.from_tau_s));
   fmt::print("\n");
-}
-
-// Where the model misses the curve, and where the short-τ end was left out,
-// in words (always printed: a term read there would be wrong).
-void PrintModelCheck(const SensorNoise& s, bool gyro, double confidence) {
-  const char* sensor = gyro ? "gyroscope" : "accelerometer";
-  std::vector<std::string> misses, cut;
-  for (int i = 0; i < 3; ++i) {
-    const ModelCheck& c = s.axes[i].check;
-    const char axis = static_cast<char>('x' + i);
-    if (!c.fits) {
-      misses.push_back(fmt::format("{} ({} of {} cluster times, at {})",
-                                   axis,
-                                   c.outside,
-                                   c.points,
-                                   FormatTauRanges(c.disagree, 3)));
-    }
-    if (c.excluded > 0)
-      cut.push_back(fmt::format("{} from {:.3g} s", axis, c.from_tau_s));
-  }
-  if (!misses.empty()) {
-    fmt::print(
-        "{} model misses the curve (outside its {:.0f} % interval) on {}: the curve "
-        "shows an effect the IEEE terms lack (a filter, a Gauss-Markov bump, a "
-        "sinusoid, a ramp); the terms that dominate there are not measured.\n",
-        sensor,
-        100.0 * confidence,
-        fmt::join(misses, "; "));
-  }
-  if (!cut.empty()) {
-    fmt::print(
-        "{} short-τ end rolls off below the −½ slope (a low-pass filter): fitted {}; "
-        "the white noise is read where the −½ slope begins.\n",
-        sensor,
-        fmt::join(cut, ", "));
-  }
 }
 
 // The findings in words: terms not measured, why, and how long to record.
