@@ -48,6 +48,7 @@ struct NoiseFlags {
   bool units_given = false;
   bool gyro_units_given = false;
   bool verbose = false;
+  bool strict = false;
 };
 
 // "1 sample", "2 samples".
@@ -368,6 +369,23 @@ void WriteFiles(const NoiseFlags& f, const NoiseResult& r) {
   const std::optional<KalibrFile> k =
       f.kalibr.empty() ? std::nullopt
                        : std::optional<KalibrFile>(KalibrYaml(r, f.input, f.rostopic));
+  if (k && f.strict) {
+    std::vector<std::string> bounds;
+    for (const auto& [name, v] :
+         {std::pair{"accelerometer_noise_density", k->accel_noise_density},
+          std::pair{"accelerometer_random_walk", k->accel_random_walk},
+          std::pair{"gyroscope_noise_density", k->gyro_noise_density},
+          std::pair{"gyroscope_random_walk", k->gyro_random_walk}}) {
+      if (v.upper_bound) bounds.emplace_back(name);
+    }
+    if (!bounds.empty()) {
+      throw Error(fmt::format(
+          "{}: --strict: {} not measured on any axis (only an upper bound); record "
+          "longer, or leave out --strict to write the bounds, marked",
+          f.kalibr,
+          fmt::join(bounds, ", ")));
+    }
+  }
   std::error_code ec;
   const bool json_existed = !f.json.empty() && std::filesystem::exists(f.json, ec);
   if (!f.json.empty()) WriteFileAtomically(f.json, json);
@@ -474,7 +492,8 @@ void Run(NoiseFlags& f) {
   PrintSensor(r.accel_mps2, false);
   if (r.gyro_radps) PrintSensor(*r.gyro_radps, true);
   fmt::print(
-      "\nvalue [interval]; '< bound (not seen)': not measured, the largest value the "
+      "\nvalue [interval]; '< bound (not seen)' or '(model misses)': not measured, the "
+      "largest value the "
       "record allows. Densities are continuous-time: per sample σ = N·√rate.\n");
   fmt::print("\n");
   PrintModelCheck(r.accel_mps2, false, f.noise.allan.confidence);
@@ -508,6 +527,11 @@ void AddNoiseCommand(CLI::App& root) {
                   f->kalibr,
                   "Write Kalibr's IMU noise file (imu.yaml) from the measured values")
       ->check(OutputPath);
+  app->add_flag(
+      "--strict",
+      f->strict,
+      "With --kalibr: a value not measured on any axis is an error (exit 1, no file "
+      "written) instead of its upper bound");
   app->add_option("--rostopic", f->rostopic, "The rostopic written in the Kalibr file")
       ->capture_default_str();
   app->add_option("--calib",

@@ -261,15 +261,19 @@ SensorNoise ReadSensor(const JsonReader& r,
   return s;
 }
 
-// The largest of the three axes: a measured value, or the bound of an axis
-// where it was not measured (the larger of the two kinds wins, so that a
-// bound is never hidden behind a smaller measured value).
+// The largest of the three axes' measured values; only when no axis has one,
+// the largest bound. A bound never wins over a measured value: the file's
+// value is a measurement whenever there is one, and the comment names the
+// axes where there is none.
 KalibrValue Largest(const SensorNoise& s, NoiseTerm term, const char* what) {
   KalibrValue best;
   bool any = false;
+  bool any_measured = false;
+  for (int i = 0; i < 3; ++i) any_measured = any_measured || s.axes[i].term(term).value;
   for (int i = 0; i < 3; ++i) {
     const TermEstimate& e = s.axes[i].term(term);
     const bool bound = !e.value.has_value();
+    if (bound && any_measured) continue;
     const double v = bound ? e.upper_bound : *e.value;
     if (!(v > 0.0)) continue;
     if (!any || v > best.value) {
@@ -302,6 +306,16 @@ std::string Describe(const KalibrValue& v, const SensorNoise& s, NoiseTerm term)
                                                       : "not measured"));
   }
   std::string s_out = fmt::format("from axis {} ({})", kAxisNames[v.axis], per_axis);
+  std::string unmeasured;
+  for (int i = 0; i < 3; ++i) {
+    if (!v.upper_bound && !s.axes[i].term(term).value)
+      unmeasured += fmt::format("{}{}", unmeasured.empty() ? "" : ", ", kAxisNames[i]);
+  }
+  if (!unmeasured.empty()) {
+    s_out += fmt::format(
+        "; the largest MEASURED axis: not measured on {} (its bound not used)",
+        unmeasured);
+  }
   if (v.upper_bound && s.axes[v.axis].term(term).status == TermStatus::kDisagrees) {
     s_out +=
         "; NOT MEASURED: the model misses the curve where it dominates; an upper bound "
