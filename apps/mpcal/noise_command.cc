@@ -17,6 +17,7 @@
 #include "command.h"
 #include "explain.h"
 #include "explain_detect.h"
+#include "explain_noise.h"
 #include "mpcal/apply.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibrate.h"
@@ -47,6 +48,7 @@ struct NoiseFlags {
   bool units_given = false;
   bool gyro_units_given = false;
   bool verbose = false;
+  bool strict = false;
 };
 
 // "1 sample", "2 samples".
@@ -78,8 +80,9 @@ const char* TermLabel(NoiseTerm t, bool gyro) {
 
 std::string SiCell(const TermEstimate& e) {
   if (e.value) return fmt::format("{:.4g} [{:.3g}, {:.3g}]", *e.value, e.lo, e.hi);
-  if (e.upper_bound > 0.0) return fmt::format("< {:.3g} (not seen)", e.upper_bound);
-  return "not seen";
+  const char* why = e.status == TermStatus::kDisagrees ? "model misses" : "not seen";
+  if (e.upper_bound > 0.0) return fmt::format("< {:.3g} ({})", e.upper_bound, why);
+  return why;
 }
 
 std::string DatasheetCell(const TermEstimate& e, NoiseTerm t, bool gyro) {
@@ -110,6 +113,16 @@ void PrintSensor(const SensorNoise& s, bool gyro) {
       fmt::print(" {:>30}", DatasheetCell(a.term(t), t, gyro));
     fmt::print("\n");
   }
+  fmt::print("{:<22} {:<11}", "model vs curve", "τ points");
+  for (const AxisNoise& a : s.axes) fmt::print(" {:>30}", ModelCheckCell(a.check));
+  fmt::print("\n");
+  bool excluded = false;
+  for (const AxisNoise& a : s.axes) excluded = excluded || a.check.excluded > 0;
+  if (!excluded) return;
+  fmt::print("{:<22} {:<11}", "fitted from τ", "s");
+  for (const AxisNoise& a : s.axes)
+    fmt::print(" {:>30}", fmt::format("{:.3g}", a.check.from_tau_s));
+  fmt::print("\n");
 }
 
 // The findings in words: terms not measured, why, and how long to record.
@@ -160,9 +173,19 @@ void PrintFindings(const SensorNoise& s, bool gyro, const NoiseResult& r) {
 // longer record would show it), do not use when not even the white noise
 // shows: the record is not still noise.
 void PrintSensorVerdict(const SensorNoise& s, bool gyro, const NoiseResult& r) {
-  std::vector<std::string> not_seen;
+  std::vector<std::string> not_seen, disagree;
   bool white_missing = false;
   std::optional<double> needed;
+  for (const NoiseTerm t : kTableTerms) {
+    std::vector<std::string> axes;
+    for (int i = 0; i < 3; ++i) {
+      if (s.axes[i].term(t).status == TermStatus::kDisagrees)
+        axes.emplace_back(1, static_cast<char>('x' + i));
+    }
+    if (!axes.empty())
+      disagree.push_back(
+          fmt::format("{} on {}", TermLabel(t, gyro), fmt::join(axes, ", ")));
+  }
   for (const NoiseTerm t :
        {NoiseTerm::kWhiteNoise, NoiseTerm::kBiasInstability, NoiseTerm::kRandomWalk}) {
     std::vector<std::string> axes;
@@ -179,15 +202,20 @@ void PrintSensorVerdict(const SensorNoise& s, bool gyro, const NoiseResult& r) {
       needed = std::max(needed.value_or(0.0), *n);
     }
   }
-  const Verdict verdict = white_missing      ? Verdict::kDoNotUse
-                          : not_seen.empty() ? Verdict::kGood
-                                             : Verdict::kLookAt;
+  const Verdict verdict = white_missing                          ? Verdict::kDoNotUse
+                          : not_seen.empty() && disagree.empty() ? Verdict::kGood
+                                                                 : Verdict::kLookAt;
   std::string why =
       not_seen.empty()
           ? std::string("every term measured or bounded as far as any record shows it")
           : fmt::format("not measured in this {} record: {}",
                         FormatRecordLength(r.record_s),
                         fmt::join(not_seen, "; "));
+  if (!disagree.empty()) {
+    why = fmt::format("the model misses the curve where these dominate: {}; {}",
+                      fmt::join(disagree, "; "),
+                      not_seen.empty() ? "the rest measured or bounded" : why);
+  }
   if (needed)
     why += fmt::format("; record at least {} to see them (if as large as their bounds)",
                        FormatRecordLength(*needed));
@@ -341,6 +369,23 @@ void WriteFiles(const NoiseFlags& f, const NoiseResult& r) {
   const std::optional<KalibrFile> k =
       f.kalibr.empty() ? std::nullopt
                        : std::optional<KalibrFile>(KalibrYaml(r, f.input, f.rostopic));
+  if (k && f.strict) {
+    std::vector<std::string> bounds;
+    for (const auto& [name, v] :
+         {std::pair{"accelerometer_noise_density", k->accel_noise_density},
+          std::pair{"accelerometer_random_walk", k->accel_random_walk},
+          std::pair{"gyroscope_noise_density", k->gyro_noise_density},
+          std::pair{"gyroscope_random_walk", k->gyro_random_walk}}) {
+      if (v.upper_bound) bounds.emplace_back(name);
+    }
+    if (!bounds.empty()) {
+      throw Error(fmt::format(
+          "{}: --strict: {} not measured on any axis (only an upper bound); record "
+          "longer, or leave out --strict to write the bounds, marked",
+          f.kalibr,
+          fmt::join(bounds, ", ")));
+    }
+  }
   std::error_code ec;
   const bool json_existed = !f.json.empty() && std::filesystem::exists(f.json, ec);
   if (!f.json.empty()) WriteFileAtomically(f.json, json);
@@ -447,9 +492,12 @@ void Run(NoiseFlags& f) {
   PrintSensor(r.accel_mps2, false);
   if (r.gyro_radps) PrintSensor(*r.gyro_radps, true);
   fmt::print(
-      "\nvalue [interval]; '< bound (not seen)': not measured, the largest value the "
+      "\nvalue [interval]; '< bound (not seen)' or '(model misses)': not measured, the "
+      "largest value the "
       "record allows. Densities are continuous-time: per sample σ = N·√rate.\n");
   fmt::print("\n");
+  PrintModelCheck(r.accel_mps2, false, f.noise.allan.confidence);
+  if (r.gyro_radps) PrintModelCheck(*r.gyro_radps, true, f.noise.allan.confidence);
   PrintSensorVerdict(r.accel_mps2, false, r);
   if (r.gyro_radps) PrintSensorVerdict(*r.gyro_radps, true, r);
   if (f.verbose) {
@@ -479,6 +527,11 @@ void AddNoiseCommand(CLI::App& root) {
                   f->kalibr,
                   "Write Kalibr's IMU noise file (imu.yaml) from the measured values")
       ->check(OutputPath);
+  app->add_flag(
+      "--strict",
+      f->strict,
+      "With --kalibr: a value not measured on any axis is an error (exit 1, no file "
+      "written) instead of its upper bound");
   app->add_option("--rostopic", f->rostopic, "The rostopic written in the Kalibr file")
       ->capture_default_str();
   app->add_option("--calib",

@@ -105,7 +105,9 @@ def draw_terms(rng, args, rate_hz):
             c = rng.uniform(-const, const)
             if sensor == 'accel' and args.gravity_axis[-1] == a:
                 c += G_STD * (-1 if args.gravity_axis.startswith('-') else 1)
-            axes.append({'constant': c, 'N': n, 'K': k, 'B': b, 'Q': q})
+            axes.append({'constant': c, 'N': n, 'K': k, 'B': b, 'Q': q, 'lowpass_hz': args.lowpass_hz,
+                         'bump': (getattr(args, sensor + '_gm_sigma'), args.gm_tau_c),
+                         'sine': (getattr(args, sensor + '_sine_amplitude'), args.sine_period)})
         out[sensor] = axes
     return out
 
@@ -118,7 +120,8 @@ def allan_table(terms, rate_hz, duration_s):
         per = {}
         for ax in axes:
             q2 = noise_terms.gm_variance_for(ax['B'], tau0)[0] if ax['B'] > 0 else 0.0
-            parts = noise_terms.allan_var_terms(tau, tau0, ax['N'], ax['K'], q2, ax['Q'])
+            parts = noise_terms.allan_var_terms(tau, tau0, ax['N'], ax['K'], q2, ax['Q'],
+                                                ax['lowpass_hz'], ax['bump'], ax['sine'])
             total = sum(parts.values())
             for name, v in list(parts.items()) + [('total', total)]:
                 per.setdefault(name, []).append(np.sqrt(v).tolist())
@@ -143,11 +146,13 @@ def write_still(args, terms, rng):
     n_total = int(round(args.hours * 3600 * rate))
     nb = max(1, int(round(BLOCK_S * rate)))
     chunk = nb * max(1, CHUNK // nb)
-    axes = [noise_terms.Axis(rng, rate, a['constant'], a['N'], a['K'], a['B'], a['Q'])
+    axes = [noise_terms.Axis(rng, rate, a['constant'], a['N'], a['K'], a['B'], a['Q'],
+                             a['lowpass_hz'], a['bump'], a['sine'])
             for sensor in ('accel', 'gyro') for a in terms[sensor]]
     for ax, a in zip(axes, terms['accel'] + terms['gyro']):
         a['gauss_markov_sigma'] = math.sqrt(ax.q2)
         a['plateau_ripple'] = ax.ripple
+        a['sine_phase'] = ax.sine_phase
     afac = G_STD if args.accel_units == 'g' else 1.0
     gfac = DEG if args.gyro_units == 'dps' else 1.0
     fmt = ','.join(['%.6f'] + ['%.9f' if afac != 1 else '%.7f'] * 3 + ['%.7f' if gfac != 1 else '%.9f'] * 3)
@@ -184,6 +189,19 @@ def parse_args(argv):
         ap.add_argument('--%s-bias-instability' % sensor, type=float, metavar='B',
                         help='B in %s (0: none)' % unit_b)
         ap.add_argument('--%s-random-walk' % sensor, type=float, metavar='K', help='K in %s (0: none)' % unit_k)
+    ap.add_argument('--lowpass-hz', type=float, default=0.0, metavar='F',
+                    help='white noise through a first-order IIR low-pass of bandwidth F Hz (0: none)')
+    ap.add_argument('--gm-tau-c', type=float, default=1.0, metavar='S',
+                    help='correlation time of the Gauss-Markov bump, s (default 1)')
+    ap.add_argument('--accel-gm-sigma', type=float, default=0.0, metavar='S',
+                    help='standard deviation of the accelerometer Gauss-Markov bump, m/s^2 (0: none)')
+    ap.add_argument('--gyro-gm-sigma', type=float, default=0.0, metavar='S',
+                    help='standard deviation of the gyroscope Gauss-Markov bump, rad/s (0: none)')
+    ap.add_argument('--sine-period', type=float, default=1.0, metavar='P', help='period of the sinusoid, s')
+    ap.add_argument('--accel-sine-amplitude', type=float, default=0.0, metavar='A',
+                    help='amplitude of the accelerometer sinusoid, m/s^2 (0: none)')
+    ap.add_argument('--gyro-sine-amplitude', type=float, default=0.0, metavar='A',
+                    help='amplitude of the gyroscope sinusoid, rad/s (0: none)')
     ap.add_argument('--check', action='store_true', help='verify the noise terms after writing')
     a = ap.parse_args(argv)
     if not 0 < a.hours <= 48:
@@ -192,6 +210,16 @@ def parse_args(argv):
         ap.error('--rate must be 1-10000 Hz')
     if a.hours * 3600 * a.rate < 100:
         ap.error('the recording must hold at least 100 samples (--hours x 3600 x --rate)')
+    if not 0 <= a.lowpass_hz < a.rate / 2:
+        ap.error('--lowpass-hz must be in [0, rate/2)')
+    for name in ('gm_tau_c', 'sine_period'):
+        if not getattr(a, name) > 0:
+            ap.error('--%s must be positive' % name.replace('_', '-'))
+    if a.sine_period < 2 / a.rate:
+        ap.error('--sine-period must be at least two sample intervals (2 / --rate)')
+    for name in ('accel_gm_sigma', 'gyro_gm_sigma', 'accel_sine_amplitude', 'gyro_sine_amplitude'):
+        if getattr(a, name) < 0:
+            ap.error('--%s must not be negative' % name.replace('_', '-'))
     for name in ('accel_noise_density', 'gyro_noise_density'):
         if getattr(a, name) is not None and getattr(a, name) <= 0:
             ap.error('--%s must be positive' % name.replace('_', '-'))
@@ -215,7 +243,13 @@ def generate(args):
              'log': {'file': 'still.csv', 'columns': 't,ax,ay,az,gx,gy,gz',
                      'accel_units': args.accel_units, 'gyro_units': args.gyro_units,
                      'accel_si_per_unit': afac, 'gyro_si_per_unit': gfac},
+             'lowpass_hz': args.lowpass_hz,
              'conventions': {'N': 'white noise density; per-sample sigma N sqrt(rate_hz)',
+                             'lowpass_hz': 'white noise through y_n = a y_(n-1) + (1 - a) x_n, '
+                                           'a = exp(-2 pi lowpass_hz / rate_hz); 0: none',
+                             'gauss_markov_bump': 'x_n = phi x_(n-1) + w_n, phi = exp(-1 / (rate_hz tau_c_s)), '
+                                                  'stationary standard deviation sigma',
+                             'sine': 'amplitude sin(2 pi t / period_s + phase)',
                              'K': 'rate random walk; increments K sqrt(1/rate_hz) per sample',
                              'B': 'bias instability; flat Allan deviation 0.664 B over plateau_s',
                              'Q': 'quantisation; Allan deviation sqrt(3) Q / tau'},
@@ -238,6 +272,9 @@ def generate(args):
             'plateau_ripple': [a['plateau_ripple'] for a in axes],
             'textbook_B_from_total_min_' + u: [a['textbook_B_from_total_min'] for a in axes],
             'tau_at_total_min_s': [a['tau_at_total_min_s'] for a in axes],
+            'gauss_markov_bump': {'sigma_' + u: [a['bump'][0] for a in axes], 'tau_c_s': args.gm_tau_c},
+            'sine': {'amplitude_' + u: [a['sine'][0] for a in axes], 'period_s': args.sine_period,
+                     'phase_rad': [a['sine_phase'] for a in axes]},
             'datasheet': dict(zip(AXES, (datasheet(sensor, a) for a in axes)))}
     truth['allan'] = allan
     with open(os.path.join(args.out, 'truth.json'), 'w') as f:

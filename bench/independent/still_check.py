@@ -74,13 +74,23 @@ def measured_b_ratio(bi, block_s, chans):
 
 def per_channel(truth):
     """(N, K, B, Q) for the six channels from the truth file."""
+    return [c[:4] for c in channels(truth)]
+
+
+def channels(truth):
+    """(N, K, B, Q, extra) for the six channels, extra the keyword arguments of
+    noise_terms.allan_var_terms for the low-pass, bump and sinusoid."""
     out = []
     for sensor, u, un, uk, uq in (('accel', 'mps2', 'mps2_per_sqrt_hz', 'mps3_per_sqrt_hz', 'mps'),
                                   ('gyro', 'radps', 'radps_per_sqrt_hz', 'radps2_per_sqrt_hz', 'rad')):
         t = truth[sensor]
         for i in range(3):
+            extra = {'lowpass_hz': truth.get('lowpass_hz', 0.0)}
+            if 'gauss_markov_bump' in t:
+                extra['bump'] = (t['gauss_markov_bump']['sigma_' + u][i], t['gauss_markov_bump']['tau_c_s'])
+                extra['sine'] = (t['sine']['amplitude_' + u][i], t['sine']['period_s'])
             out.append((t['noise_density_' + un][i], t['random_walk_' + uk][i],
-                        t['bias_instability_' + u][i], t['quantisation_' + uq][i]))
+                        t['bias_instability_' + u][i], t['quantisation_' + uq][i], extra))
     return out
 
 
@@ -94,6 +104,7 @@ def run(stats, truth, out_dir):
         print('check %s: %s  %s' % (name, 'ok' if passed else 'FAILED', text))
 
     chans = per_channel(truth)
+    extras = [c[4] for c in channels(truth)]
     tol = SIGMAS * math.sqrt(2.0 / n)
     white = stats.white_ss / n / np.array([c[0]**2 * rate for c in chans]) - 1
     verdict('white variance / (N^2 R) - 1', np.all(abs(white) < tol),
@@ -107,7 +118,8 @@ def run(stats, truth, out_dir):
         bar = SIGMAS / math.sqrt(2 * (n / m - 1))
         for c, (nd, kr, b, q) in enumerate(chans):
             q2 = noise_terms.gm_variance_for(b, 1.0 / rate)[0] if b > 0 else 0.0
-            expect = sum(v[0] for v in noise_terms.allan_var_terms([m / rate], 1.0 / rate, nd, kr, q2, q).values())
+            expect = sum(v[0] for v in noise_terms.allan_var_terms([m / rate], 1.0 / rate, nd, kr, q2, q,
+                                                                   **extras[c]).values())
             rel = math.sqrt(stats.short_ss[c, j] / (2 * m * m * stats.short_count[j]) / expect) - 1
             worst = max(worst, abs(rel) / bar)
             lines.append('%s@%dtau0 %+.4f' % (NAMES[c], m, rel))
@@ -125,7 +137,7 @@ def run(stats, truth, out_dir):
             bar = SIGMAS / math.sqrt(2 * (series.shape[1] / m - 1))
             for c, (nd, kr, b, q) in enumerate(chans):
                 q2 = noise_terms.gm_variance_for(b, tau0)[0] if b > 0 else 0.0
-                parts = noise_terms.allan_var_terms([m * stats.block_s], tau0, nd, kr, q2, q)
+                parts = noise_terms.allan_var_terms([m * stats.block_s], tau0, nd, kr, q2, q, **extras[c])
                 expect = math.sqrt(parts[which][0] if which else sum(v[0] for v in parts.values()))
                 if expect == 0:
                     continue

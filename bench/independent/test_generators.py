@@ -167,6 +167,30 @@ def test_still_given_terms_and_failures(tmp):
         assert not ok and any(label in line for line in failed), (key, text)
 
 
+def test_still_real_effects(tmp):
+    """The low-pass, the Gauss-Markov bump and the sinusoid follow their exact
+    Allan curves; the check fails when any of them is left out of the truth."""
+    args = gen_still.parse_args(['--out', os.path.join(tmp, 'still3'), '--hours', '0.1', '--rate', '100',
+                                 '--seed', '7', '--gyro-noise-density', '2e-4', '--lowpass-hz', '12.5',
+                                 '--gm-tau-c', '0.5', '--gyro-gm-sigma', '1e-3', '--sine-period', '0.2',
+                                 '--gyro-sine-amplitude', '2e-3'])
+    truth, stats = quiet(gen_still.generate, args)[0]
+    assert truth['lowpass_hz'] == 12.5 and truth['gyro']['gauss_markov_bump']['tau_c_s'] == 0.5
+    ok, text = quiet(still_check.run, stats, truth, args.out)
+    assert ok, text
+    for label, spoil in (('low-pass', lambda t: t.update(lowpass_hz=0.0)),
+                         ('bump', lambda t: t['gyro']['gauss_markov_bump']['sigma_radps'].__setitem__(0, 0.0)),
+                         ('sine', lambda t: t['gyro']['sine']['amplitude_radps'].__setitem__(1, 0.0))):
+        bad = copy.deepcopy(truth)
+        spoil(bad)
+        ok, text = quiet(still_check.run, stats, bad, args.out)
+        failed = [line for line in text.splitlines() if 'FAILED' in line]
+        assert not ok and any('Allan deviation of the total' in line for line in failed), (label, text)
+    code, _, stderr = run_cli('gen_still.py', '--out', args.out, '--hours', '0.1', '--rate', '100',
+                              '--seed', '7', '--lowpass-hz', '60')
+    assert code != 0 and '--lowpass-hz' in stderr
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument('--keep', help='write the generated files here and keep them')

@@ -76,10 +76,12 @@ struct KalibrFile {
 
 /// Kalibr's IMU YAML (accelerometer_noise_density, accelerometer_random_walk,
 /// gyroscope_noise_density, gyroscope_random_walk, update_rate, rostopic).
-/// Rule across axes: the largest of the three (Kalibr takes one value per
-/// sensor; the largest keeps the filter from trusting any axis more than it
-/// deserves). A random walk not measured on the axis that gives the largest
-/// value is its upper bound, said so in a comment. Densities are Kalibr's
+/// Rule across axes: the largest of the three measured values (Kalibr takes
+/// one value per sensor; the largest keeps the filter from trusting any axis
+/// more than it deserves). A bound never wins over a measured value: only
+/// when no axis measured the term is the value the largest upper bound,
+/// marked UPPER BOUND on its own line; the axes not measured are named in
+/// the comment either way. Densities are Kalibr's
 /// continuous-time ones, the same as mpcal's.
 /// \throws mpcal::Error when the result has no gyroscope, or a white noise
 ///   or random walk has neither a value nor a bound.

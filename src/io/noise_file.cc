@@ -42,11 +42,27 @@ json TermJson(const TermEstimate& e) {
   return j;
 }
 
+json CheckJson(const ModelCheck& c) {
+  json j;
+  j["points"] = c.points;
+  j["outside"] = c.outside;
+  j["share_outside"] = c.share_outside;
+  j["fits"] = c.fits;
+  json runs = json::array();
+  for (const TauRange& r : c.disagree) runs.push_back({r.lo_s, r.hi_s});
+  j["disagree_tau_s"] = runs;
+  j["from_tau_s"] = c.from_tau_s;
+  j["excluded_points"] = c.excluded;
+  return j;
+}
+
 json AxisJson(const AxisNoise& a, bool gyro) {
   json j;
   for (int t = 0; t < kNoiseTermCount; ++t) {
     j[NoiseTermKey(static_cast<NoiseTerm>(t), gyro)] = TermJson(a.terms[t]);
   }
+  // The fitted model held against the curve (ModelCheck).
+  j["model_check"] = CheckJson(a.check);
   const std::string u = SensorUnitKey(gyro);
   const AllanPoint* min = a.curve.empty() ? nullptr : &a.curve.front();
   for (const AllanPoint& p : a.curve) {
@@ -125,15 +141,18 @@ TermEstimate ReadTerm(const JsonReader& r, const json& o, const std::string& pat
         r.ArrayValue(r.Field(o, path, "tau_range_s"), path + ".tau_range_s", 2);
     e.tau_lo_s = r.NumberValue(range[0], path + ".tau_range_s[0]");
     e.tau_hi_s = r.NumberValue(range[1], path + ".tau_range_s[1]");
-  } else if (status == "not_seen" || status == "masked") {
-    e.status = status == "masked" ? TermStatus::kMasked : TermStatus::kNotSeen;
+  } else if (status == "not_seen" || status == "masked" || status == "disagrees") {
+    e.status = status == "masked"      ? TermStatus::kMasked
+               : status == "disagrees" ? TermStatus::kDisagrees
+                                       : TermStatus::kNotSeen;
     e.upper_bound = r.Number(o, path, "upper_bound");
     const json& need = r.Field(o, path, "record_needed_s");
     if (!need.is_null())
       e.record_needed_s = r.NumberValue(need, path + ".record_needed_s");
   } else {
     r.Fail(
-        fmt::format("field '{}.status' must be measured, not_seen or masked, found '{}'",
+        fmt::format("field '{}.status' must be measured, not_seen, masked or disagrees, "
+                    "found '{}'",
                     path,
                     status));
   }
@@ -154,6 +173,31 @@ std::vector<double> Numbers(const JsonReader& r,
   return v;
 }
 
+// The model check; a file without one (written before the check existed in
+// this format) reads as not checked (points 0).
+ModelCheck ReadCheck(const JsonReader& r, const json& o, const std::string& path) {
+  ModelCheck c;
+  if (!o.contains("model_check")) return c;
+  const std::string cp = JsonReader::Join(path, "model_check");
+  const json& j = r.Object(o, path, "model_check");
+  c.points = static_cast<int>(r.Integer(j, cp, "points", 0, 1 << 20));
+  c.outside = static_cast<int>(r.Integer(j, cp, "outside", 0, c.points));
+  c.share_outside = r.Number(j, cp, "share_outside");
+  c.fits = r.Bool(j, cp, "fits");
+  c.from_tau_s = r.Number(j, cp, "from_tau_s");
+  c.excluded = static_cast<int>(r.Integer(j, cp, "excluded_points", 0, 1 << 20));
+  const std::string dp = cp + ".disagree_tau_s";
+  const json& runs = r.Field(j, cp, "disagree_tau_s");
+  if (!runs.is_array()) r.Fail(fmt::format("field '{}' must be an array", dp));
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const std::string ip = fmt::format("{}[{}]", dp, i);
+    const json& run = r.ArrayValue(runs[i], ip, 2);
+    c.disagree.push_back(
+        TauRange{r.NumberValue(run[0], ip + "[0]"), r.NumberValue(run[1], ip + "[1]")});
+  }
+  return c;
+}
+
 AxisNoise ReadAxis(const JsonReader& r,
                    const json& o,
                    const std::string& path,
@@ -163,6 +207,7 @@ AxisNoise ReadAxis(const JsonReader& r,
     const std::string key = NoiseTermKey(static_cast<NoiseTerm>(t), gyro);
     a.terms[t] = ReadTerm(r, r.Object(o, path, key), JsonReader::Join(path, key));
   }
+  a.check = ReadCheck(r, o, path);
   const std::string ap = JsonReader::Join(path, "allan");
   const json& allan = r.Object(o, path, "allan");
   const json& tau_json = r.Field(allan, ap, "tau_s");
@@ -217,15 +262,19 @@ SensorNoise ReadSensor(const JsonReader& r,
   return s;
 }
 
-// The largest of the three axes: a measured value, or the bound of an axis
-// where it was not measured (the larger of the two kinds wins, so that a
-// bound is never hidden behind a smaller measured value).
+// The largest of the three axes' measured values; only when no axis has one,
+// the largest bound. A bound never wins over a measured value: the file's
+// value is a measurement whenever there is one, and the comment names the
+// axes where there is none.
 KalibrValue Largest(const SensorNoise& s, NoiseTerm term, const char* what) {
   KalibrValue best;
   bool any = false;
+  bool any_measured = false;
+  for (int i = 0; i < 3; ++i) any_measured = any_measured || s.axes[i].term(term).value;
   for (int i = 0; i < 3; ++i) {
     const TermEstimate& e = s.axes[i].term(term);
     const bool bound = !e.value.has_value();
+    if (bound && any_measured) continue;
     const double v = bound ? e.upper_bound : *e.value;
     if (!(v > 0.0)) continue;
     if (!any || v > best.value) {
@@ -247,15 +296,32 @@ std::string Describe(const KalibrValue& v, const SensorNoise& s, NoiseTerm term)
   std::string per_axis;
   for (int i = 0; i < 3; ++i) {
     const TermEstimate& e = s.axes[i].term(term);
-    per_axis +=
-        fmt::format("{}{} {}",
-                    i ? ", " : "",
-                    kAxisNames[i],
-                    e.value ? fmt::format("{:.4g}", *e.value)
-                            : fmt::format("< {:.4g} (not measured)", e.upper_bound));
+    per_axis += fmt::format("{}{} {}",
+                            i ? ", " : "",
+                            kAxisNames[i],
+                            e.value ? fmt::format("{:.4g}", *e.value)
+                                    : fmt::format("< {:.4g} ({})",
+                                                  e.upper_bound,
+                                                  e.status == TermStatus::kDisagrees
+                                                      ? "model misses the curve"
+                                                      : "not measured"));
   }
   std::string s_out = fmt::format("from axis {} ({})", kAxisNames[v.axis], per_axis);
-  if (v.upper_bound) {
+  std::string unmeasured;
+  for (int i = 0; i < 3; ++i) {
+    if (!v.upper_bound && !s.axes[i].term(term).value)
+      unmeasured += fmt::format("{}{}", unmeasured.empty() ? "" : ", ", kAxisNames[i]);
+  }
+  if (!unmeasured.empty()) {
+    s_out += fmt::format(
+        "; the largest MEASURED axis: not measured on {} (its bound not used)",
+        unmeasured);
+  }
+  if (v.upper_bound && s.axes[v.axis].term(term).status == TermStatus::kDisagrees) {
+    s_out +=
+        "; NOT MEASURED: the model misses the curve where it dominates; an upper bound "
+        "from the curve";
+  } else if (v.upper_bound) {
     s_out += "; NOT MEASURED: an upper bound from a record too short to show it";
     if (v.record_needed_s) {
       s_out += fmt::format(", record at least {} to measure it",
@@ -384,6 +450,28 @@ void KalibrHeader(YAML::Emitter& y, const NoiseResult& r, const std::string& inp
   }
 }
 
+// The model against the curve of a sensor's three axes, on one line.
+std::string CheckComment(const SensorNoise& s, bool gyro) {
+  std::string out =
+      fmt::format("{} model vs Allan curve:", gyro ? "gyroscope" : "accelerometer");
+  for (int i = 0; i < 3; ++i) {
+    const ModelCheck& c = s.axes[i].check;
+    out += fmt::format("{} {} ", i ? "," : "", kAxisNames[i]);
+    if (c.points == 0) {
+      out += "not checked";
+      continue;
+    }
+    out += fmt::format("{} ({} of {} cluster times outside its interval",
+                       c.fits ? "fits" : "MISSES",
+                       c.outside,
+                       c.points);
+    if (!c.fits) out += ", at " + FormatTauRanges(c.disagree, 3);
+    if (c.excluded > 0) out += fmt::format("; fitted from tau = {:.3g} s", c.from_tau_s);
+    out += ")";
+  }
+  return out;
+}
+
 // One value of the Kalibr file, and where it came from.
 struct KalibrEntry {
   const char* key;
@@ -432,6 +520,9 @@ KalibrFile KalibrYaml(const NoiseResult& r,
   // or a ':' stays one value.
   YAML::Emitter y;
   KalibrHeader(y, r, input);
+  for (const bool gyro : {false, true}) {
+    y << YamlComment(CheckComment(gyro ? g : a, gyro)) << YAML::Newline;
+  }
   for (const KalibrEntry& e : entries) {
     if (&e != &entries[0]) y << YAML::Newline;
     y << YamlComment(fmt::format("{} {}", e.key, Describe(*e.value, *e.sensor, e.term)));

@@ -52,6 +52,29 @@ std::string FormatRecordLength(double seconds) {
   return fmt::format("{:.0f} s", seconds);
 }
 
+std::string FormatTauRanges(const std::vector<TauRange>& ranges, int max_ranges) {
+  std::vector<TauRange> shown = ranges;
+  const auto span = [](const TauRange& r) { return r.hi_s / r.lo_s; };
+  std::stable_sort(shown.begin(), shown.end(), [&](const TauRange& a, const TauRange& b) {
+    return span(a) > span(b);
+  });
+  const std::size_t keep =
+      std::min(shown.size(), static_cast<std::size_t>(std::max(max_ranges, 0)));
+  const std::size_t more = shown.size() - keep;
+  shown.resize(keep);
+  std::sort(shown.begin(), shown.end(), [](const TauRange& a, const TauRange& b) {
+    return a.lo_s < b.lo_s;
+  });
+  std::string out;
+  for (const TauRange& r : shown) {
+    if (!out.empty()) out += ", ";
+    out += r.lo_s == r.hi_s ? fmt::format("{:.2g} s", r.lo_s)
+                            : fmt::format("{:.2g}\u2013{:.2g} s", r.lo_s, r.hi_s);
+  }
+  if (more > 0) out += fmt::format(" + {} more", more);
+  return out;
+}
+
 std::string_view ToString(SignalFault fault) {
   switch (fault) {
     case SignalFault::kStuck:

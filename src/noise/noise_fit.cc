@@ -25,6 +25,7 @@ constexpr int kTerms = kNoiseTermCount;
 using TermMask = unsigned;
 using Coefficients = std::array<double, kTerms>;  // Q², N², B², K², R²
 constexpr int kRampIndex = static_cast<int>(NoiseTerm::kRateRamp);
+constexpr int kQuantIndex = static_cast<int>(NoiseTerm::kQuantisation);
 
 // σ²(τ) per unit coefficient of each term (IEEE 952 Table C.2).
 double Basis(int term, double tau_s) {
@@ -58,9 +59,12 @@ struct Fit {
 // Non-negative least squares over the terms in `allowed`: the optimum lies
 // on some support set where the unconstrained optimum is positive, so with
 // five terms every subset is tried (exact, and 31 tiny solves).
+// `signed_terms`: those that may come out negative (the roll-off of a
+// low-pass filter beyond its short-τ end, see AnalyseAxis).
 Fit FitNonNegative(const std::vector<AllanPoint>& curve,
                    const std::vector<double>& weight,
-                   TermMask allowed) {
+                   TermMask allowed,
+                   TermMask signed_terms = 0) {
   Fit best;
   const int rows = static_cast<int>(curve.size());
   for (TermMask set = 1; set < (1u << kTerms); ++set) {
@@ -86,7 +90,15 @@ Fit FitNonNegative(const std::vector<AllanPoint>& curve,
     if (qr.rank() < k) continue;
     const Eigen::VectorXd xs = qr.solve(b);
     const Eigen::VectorXd x = xs.cwiseQuotient(scale);
-    if ((x.array() <= 0.0).any()) continue;
+    bool negative = false;
+    for (int i = 0; i < k; ++i) {
+      negative = negative || (x(i) <= 0.0 && (signed_terms & (1u << cols[i])) == 0);
+    }
+    if (negative) continue;
+    bool model_positive = true;
+    for (int j = 0; j < rows; ++j)
+      model_positive = model_positive && (a.row(j) * x)(0) > 0.0;
+    if (!model_positive) continue;
     const double cost = (a * x - b).squaredNorm();
     if (cost >= best.cost) continue;
     best = Fit{};
@@ -134,21 +146,22 @@ void SetIntervals(std::vector<AllanPoint>& curve,
 Fit FitTerms(std::vector<AllanPoint>& curve,
              TermMask allowed,
              double phase_points,
-             const NoiseOptions& o) {
+             const NoiseOptions& o,
+             TermMask signed_terms = 0) {
   std::vector<double> weight(curve.size());
   const double inflation = o.allan.points_per_octave / o.independent_points_per_octave;
   SetIntervals(curve, nullptr, phase_points, o.allan.confidence);
   for (std::size_t j = 0; j < curve.size(); ++j) {
     weight[j] = curve[j].edf / (2.0 * curve[j].avar * curve[j].avar);
   }
-  Fit fit = FitNonNegative(curve, weight, allowed);
+  Fit fit = FitNonNegative(curve, weight, allowed, signed_terms);
   for (int it = 0; it < o.fit_iterations && std::isfinite(fit.cost); ++it) {
     SetIntervals(curve, &fit.c, phase_points, o.allan.confidence);
     for (std::size_t j = 0; j < curve.size(); ++j) {
       const double model = Model(fit.c, curve[j].tau_s);
       weight[j] = curve[j].edf / (2.0 * model * model);
     }
-    const Fit next = FitNonNegative(curve, weight, allowed);
+    const Fit next = FitNonNegative(curve, weight, allowed, signed_terms);
     if (!std::isfinite(next.cost)) break;
     fit = next;
   }
@@ -295,6 +308,8 @@ void BoundTerms(const std::vector<AllanPoint>& curve,
       bound = std::min(bound, std::sqrt(p.adev_hi * p.adev_hi / Basis(t, p.tau_s)));
     }
     e.upper_bound = std::isfinite(bound) ? bound : 0.0;
+    // A longer record does not mend a model that misses an effect.
+    if (e.status == TermStatus::kDisagrees) continue;
     const auto term = static_cast<NoiseTerm>(t);
     if (term == NoiseTerm::kBiasInstability && walk_measured) {
       // The random walk rises before the white noise falls to this level:
@@ -317,6 +332,62 @@ void BoundTerms(const std::vector<AllanPoint>& curve,
   }
 }
 
+// The fitted model `c` against the curve: the cluster times where its σ(τ)
+// lies outside the curve's interval, and their runs.
+ModelCheck CheckModel(const std::vector<AllanPoint>& curve,
+                      const Coefficients& c,
+                      const NoiseOptions& o) {
+  ModelCheck check;
+  check.points = static_cast<int>(curve.size());
+  if (curve.empty()) return check;
+  check.from_tau_s = curve.front().tau_s;
+  bool in_run = false;
+  for (const AllanPoint& p : curve) {
+    const double fitted = std::sqrt(Model(c, p.tau_s));
+    const bool outside = !(fitted >= p.adev_lo && fitted <= p.adev_hi);
+    if (outside) {
+      ++check.outside;
+      if (!in_run) check.disagree.push_back(TauRange{p.tau_s, p.tau_s});
+      check.disagree.back().hi_s = p.tau_s;
+    }
+    in_run = outside;
+  }
+  check.share_outside =
+      static_cast<double>(check.outside) / static_cast<double>(check.points);
+  check.fits = check.share_outside <= o.max_misfit_share;
+  return check;
+}
+
+// Whether the curve's first k + 1 points look like a low-pass filter's
+// roll-off. The Allan deviation of white noise through a first-order
+// low-pass falls at every τ, its slope from about 0 steepening towards −½
+// and never beyond; a Gauss-Markov bump or a sinusoid on white noise
+// instead flattens or rises from −½ and falls steeper than −½ after its
+// peak. So: the first local slope flatter than −½, none steeper than −½,
+// and none flatter than a slope at a shorter τ, beyond its uncertainty (each point's
+// relative standard deviation from its interval, taken as independent: lenient).
+bool ShortEndRollsOff(const std::vector<AllanPoint>& curve,
+                      std::size_t k,
+                      double confidence) {
+  const double z = std::sqrt(ChiSquareQuantile(confidence, 1.0));
+  double steepest = std::numeric_limits<double>::infinity();
+  for (std::size_t j = 0; j < k && j + 1 < curve.size(); ++j) {
+    const AllanPoint& a = curve[j];
+    const AllanPoint& b = curve[j + 1];
+    const double span = std::log(b.tau_s / a.tau_s);
+    const double sd_a = std::log(a.adev_hi / a.adev_lo) / (2.0 * z);
+    const double sd_b = std::log(b.adev_hi / b.adev_lo) / (2.0 * z);
+    const double slope = std::log(b.adev / a.adev) / span;
+    const double se = std::hypot(sd_a, sd_b) / span;
+    if (slope < -0.5 - z * se || slope > steepest + z * se) return false;
+    // The roll-off is strongest at the first cluster time: flatter than −½
+    // there (a bump on white noise starts at −½).
+    if (j == 0 && !(slope > -0.5 + z * se)) return false;
+    steepest = std::min(steepest, slope);
+  }
+  return true;
+}
+
 }  // namespace
 
 std::string_view ToString(TermStatus status) {
@@ -327,6 +398,8 @@ std::string_view ToString(TermStatus status) {
       return "not_seen";
     case TermStatus::kMasked:
       return "masked";
+    case TermStatus::kDisagrees:
+      return "disagrees";
   }
   return "?";
 }
@@ -340,6 +413,8 @@ std::string NoiseOptions::Validate() const {
         independent_points_per_octave <= allan.points_per_octave)) {
     return "independent_points_per_octave must be in (0, allan.points_per_octave]";
   }
+  if (!(max_misfit_share >= 0.0 && max_misfit_share <= 1.0))
+    return "max_misfit_share must be in [0, 1]";
   return {};
 }
 
@@ -366,11 +441,66 @@ AxisNoise AnalyseAxis(std::vector<AllanPoint> curve,
     fit = Fit{};
     SetIntervals(curve, nullptr, phase_points, o.allan.confidence);
   }
+  ModelCheck check = CheckModel(curve, fit.c, o);
+  // A model that misses the curve: when its short-τ end rolls off below the
+  // model like a low-pass filter's, the fit starts further out, at the
+  // first cluster time from which the model fits and that lies inside the
+  // curve's interval (at most half the curve left out).
+  std::size_t from = 0;
+  for (std::size_t k = 1; !check.fits && k <= curve.size() / 2 &&
+                          ShortEndRollsOff(curve, k, o.allan.confidence);
+       ++k) {
+    std::vector<AllanPoint> kept(curve.begin() + static_cast<std::ptrdiff_t>(k),
+                                 curve.end());
+    // Beyond a few correlation times of a first-order low-pass the white
+    // noise it filtered has σ²(τ) = N²/τ − D/τ² up to terms in φ^m (its
+    // output is an AR(1) sequence, whose sums have a closed-form variance):
+    // the quantisation's basis with a negative coefficient, allowed here
+    // (never reported: a term is measured only where it is positive).
+    const Fit f = FitTerms(kept, all, phase_points, o, 1u << kQuantIndex);
+    if (!std::isfinite(f.cost)) continue;
+    const ModelCheck c = CheckModel(kept, f.c, o);
+    // The short end cut off lies below the positive terms carried to it
+    // (the white noise line): a roll-off, not an excess.
+    Coefficients positive = f.c;
+    for (double& c_t : positive) c_t = std::max(c_t, 0.0);
+    bool below = true;
+    for (std::size_t j = 0; j < k; ++j) {
+      below = below && curve[j].adev < std::sqrt(Model(positive, curve[j].tau_s));
+    }
+    // The cut goes on while the first cluster time kept still lies outside:
+    // the roll-off fades as 1/τ, and what is left of it pulls N down.
+    const bool starts_inside =
+        c.disagree.empty() || c.disagree.front().lo_s > kept.front().tau_s;
+    if (!c.fits || !below || !starts_inside) continue;
+    from = k;
+    fit = f;
+    check = c;
+  }
+  if (from > 0) SetIntervals(curve, &fit.c, phase_points, o.allan.confidence);
+  check.excluded = static_cast<int>(from);
   for (int t = 0; t < kTerms; ++t) out.fit_avar_coefficients[t] = fit.c[t];
 
-  MeasureTerms(curve, fit, o, out);
+  const std::vector<AllanPoint> kept(curve.begin() + static_cast<std::ptrdiff_t>(from),
+                                     curve.end());
+  MeasureTerms(kept, fit, o, out);
+  // A term whose region meets a stretch where the model misses the curve is
+  // not presented as measured.
+  if (!check.fits) {
+    for (TermEstimate& e : out.terms) {
+      if (e.status != TermStatus::kMeasured) continue;
+      for (const TauRange& r : check.disagree) {
+        if (r.lo_s <= e.tau_hi_s && r.hi_s >= e.tau_lo_s) {
+          e = TermEstimate{};
+          e.status = TermStatus::kDisagrees;
+          break;
+        }
+      }
+    }
+  }
   const double tau0_s = curve.front().tau_s / static_cast<double>(curve.front().m);
-  BoundTerms(curve, fit, (phase_points - 1.0) * tau0_s, o, out);
+  BoundTerms(kept, fit, (phase_points - 1.0) * tau0_s, o, out);
+  out.check = std::move(check);
   out.curve = std::move(curve);
   return out;
 }

@@ -64,6 +64,7 @@ std::string Cell(const TermEstimate& e, double factor, std::optional<double> nee
     std::string s =
         fmt::format("not measured: < {}", Significant(e.upper_bound * factor, 3));
     if (e.status == TermStatus::kMasked) s += " (below its neighbours)";
+    if (e.status == TermStatus::kDisagrees) s += " (the model misses the curve there)";
     if (e.record_needed_s && needed_s)
       s += fmt::format("; record \u2265 {}", FormatRecordLength(*needed_s));
     return s;
@@ -91,6 +92,21 @@ std::string TermsTable(const SensorNoise& s, bool gyro) {
       ds.push_back(Cell(a.term(term), unit.value, s.record_needed_s[i]));
     t.Row(ds);
   }
+  std::vector<std::string> check = {"model vs curve", "cluster times"};
+  for (const AxisNoise& a : s.axes) {
+    const ModelCheck& c = a.check;
+    if (c.points == 0) {
+      check.emplace_back("not checked");
+      continue;
+    }
+    std::string cell = fmt::format(
+        "{}: {} of {} outside", c.fits ? "fits" : "misses", c.outside, c.points);
+    if (!c.fits) cell += " at " + FormatTauRanges(c.disagree, 3);
+    if (c.excluded > 0)
+      cell += fmt::format("; fitted from \u03c4 = {:.3g} s", c.from_tau_s);
+    check.push_back(cell);
+  }
+  t.Row(check);
   return t.Finish();
 }
 
@@ -137,7 +153,9 @@ std::string AllanPlot(const AxisNoise& a, bool gyro, int axis) {
     }
     spec.series.push_back(line);
   }
+  // The sum over the cluster times fitted (from ModelCheck::from_tau_s).
   for (const AllanPoint& p : a.curve) {
+    if (p.tau_s < a.check.from_tau_s) continue;
     sum.x.push_back(p.tau_s);
     sum.y.push_back(std::sqrt(a.FittedAvar(p.tau_s)));
   }

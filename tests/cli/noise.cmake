@@ -204,3 +204,9 @@ add_test(NAME cli.noise_kalibr_hostile_topic
   COMMAND sh -c "'$<TARGET_FILE:mpcal_cli>' noise '${_still}' --kalibr hostile.yaml --rostopic \"$(printf '/imu0\\nupdate_rate: 1 # x')\" >/dev/null 2>&1 && test $(grep -c '^update_rate' hostile.yaml) -eq 1 && grep -q '^rostopic: \"/imu0\\\\nupdate_rate: 1 # x\"$' hostile.yaml")
 set_tests_properties(cli.noise_kalibr_hostile_topic PROPERTIES
   LABELS cli WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+
+# --strict: a Kalibr value not measured on any axis is an error, no file.
+mpcal_cli_test(noise_kalibr_strict_refuses_bound EXIT 1
+  MATCH "mpcal: error: imu\\.yaml: --strict: accelerometer_random_walk, gyroscope_random_walk not measured on any axis"
+  ABSENT imu.yaml n.json
+  ARGS noise ${_still} --json n.json --kalibr imu.yaml --strict)

@@ -123,6 +123,57 @@ TEST(KalibrYaml, RandomWalkNotMeasuredIsItsBoundLabelled) {
   EXPECT_DOUBLE_EQ(*k.gyro_random_walk.record_needed_s, 30000.0);
 }
 
+// One axis measured, the others only bounded above it: the file carries the
+// measured value, and its comment names the axes that were not measured.
+TEST(KalibrYaml, ABoundNeverWinsOverAMeasuredValue) {
+  NoiseResult r = Example(false);
+  r.gyro_radps->axes[0].terms[3] = Measured(2e-6);  // y and z: bounds 1e-5, 1.5e-5
+  SetRecordNeeded(*r.gyro_radps);
+  const KalibrFile k = KalibrYaml(r, "still.csv", "/imu0");
+  EXPECT_FALSE(k.gyro_random_walk.upper_bound);
+  EXPECT_EQ(k.gyro_random_walk.axis, 0);
+  EXPECT_DOUBLE_EQ(k.gyro_random_walk.value, 2e-6);
+  EXPECT_THAT(k.text,
+              HasSubstr("gyroscope_random_walk: 2.000000e-06  # rad/s^2/sqrt(Hz)"));
+  EXPECT_THAT(k.text, HasSubstr("not measured on y, z (its bound not used)"));
+}
+
+// The model check goes to the JSON and back, a term where the model misses
+// the curve reads back as `disagrees` with its bound, and the Kalibr file
+// says so on the value's comment line and in the sensor's check line.
+TEST(NoiseJson, ModelCheckAndDisagreeingTermReadBack) {
+  NoiseResult r = Example(true);
+  ModelCheck& c = r.accel_mps2.axes[1].check;
+  c.points = 61;
+  c.outside = 40;
+  c.share_outside = 40.0 / 61.0;
+  c.fits = false;
+  c.disagree = {TauRange{0.01, 0.03}, TauRange{0.19, 2.6}};
+  c.from_tau_s = 0.005;
+  TermEstimate e;
+  e.status = TermStatus::kDisagrees;
+  e.upper_bound = 5e-3;
+  for (AxisNoise& a : r.accel_mps2.axes) a.terms[1] = e;
+  r.gyro_radps->axes[2].check = ModelCheck{57, 0, 0.0, {}, true, 0.04, 4};
+  const NoiseFile back = ParseNoiseJson(NoiseJson(r, "still.csv", 0.95), "test");
+  const ModelCheck& b = back.result.accel_mps2.axes[1].check;
+  EXPECT_EQ(b.points, 61);
+  EXPECT_EQ(b.outside, 40);
+  EXPECT_FALSE(b.fits);
+  ASSERT_EQ(b.disagree.size(), 2u);
+  EXPECT_DOUBLE_EQ(b.disagree[1].hi_s, 2.6);
+  EXPECT_EQ(back.result.gyro_radps->axes[2].check.excluded, 4);
+  EXPECT_DOUBLE_EQ(back.result.gyro_radps->axes[2].check.from_tau_s, 0.04);
+  const TermEstimate& n = back.result.accel_mps2.axes[1].term(NoiseTerm::kWhiteNoise);
+  EXPECT_EQ(n.status, TermStatus::kDisagrees);
+  EXPECT_DOUBLE_EQ(n.upper_bound, 5e-3);
+  const KalibrFile k = KalibrYaml(r, "still.csv", "/imu0");
+  EXPECT_TRUE(k.accel_noise_density.upper_bound);
+  EXPECT_THAT(k.text, HasSubstr("NOT MEASURED: the model misses the curve"));
+  EXPECT_THAT(k.text, HasSubstr("y MISSES (40 of 61 cluster times outside"));
+  EXPECT_THAT(k.text, HasSubstr("fitted from tau = 0.04 s"));
+}
+
 // The sensor's one figure of how long to record: the longest of the axes
 // where the term was not seen, whichever axis the Kalibr value came from.
 TEST(KalibrYaml, RecordNeededIsTheSensorsOneFigure) {
