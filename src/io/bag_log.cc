@@ -57,11 +57,13 @@ void RefuseTextOptions(const std::string& path, const LogOptions& options) {
   }
 }
 
-[[noreturn]] void ThrowNoAcceleration(const std::string& path, const std::string& topic) {
+[[noreturn]] void ThrowNotMeasured(const std::string& path,
+                                   const std::string& topic,
+                                   bool gyro_only) {
   throw Error(ErrorKind::kInput,
-              path + ": topic '" + topic +
-                  "' gives no linear acceleration (its covariance starts with -1: not "
-                  "measured)");
+              path + ": topic '" + topic + "' gives no " +
+                  (gyro_only ? "angular velocity" : "linear acceleration") +
+                  " (its covariance starts with -1: not measured)");
 }
 
 }  // namespace
@@ -80,6 +82,7 @@ LogStreamSummary ReadBagRows(const std::string& path,
   if (consume) sink.StreamTo(std::move(consume));
   std::int64_t first_ns = 0;
   bool first = true;
+  const bool gyro_only = options.gyroscope_only;
   bool gyro = true;  // as the first message says, for every row
   ChunkRows rows;
   std::string lines;  // one line per message, for the sink's message numbers
@@ -91,11 +94,18 @@ LogStreamSummary ReadBagRows(const std::string& path,
         rows.time.clear(), rows.accel.clear(), rows.gyro.clear();
         for (const ImuMessage& m : batch) {
           if (first) {
-            if (!m.has_linear_acceleration) ThrowNoAcceleration(path, topic);
-            first_ns = m.stamp_ns, first = false, gyro = m.has_angular_velocity;
+            const bool wanted =
+                gyro_only ? m.has_angular_velocity : m.has_linear_acceleration;
+            if (!wanted) ThrowNotMeasured(path, topic, gyro_only);
+            first_ns = m.stamp_ns, first = false;
+            gyro = !gyro_only && m.has_angular_velocity;
+            rec->time_origin_ns = first_ns;
           }
           rows.time.push_back(static_cast<double>(m.stamp_ns - first_ns) / kNsPerS);
-          rows.accel.push_back(m.linear_acceleration_mps2);
+          // A gyroscope's own stream (gyro_log.h): its rates take the
+          // accelerometer's place, as a gyroscope log's columns do.
+          rows.accel.push_back(gyro_only ? m.angular_velocity_radps
+                                         : m.linear_acceleration_mps2);
           if (gyro) rows.gyro.push_back(m.angular_velocity_radps);
         }
         lines.assign(2 * batch.size(), 'm');
