@@ -34,8 +34,8 @@ void AddLogOptions(CLI::App& app,
                    const CountsHelp& counts = kCalibrateCounts);
 
 /// --gyro-log FILE [--gyro-columns MAP]: the gyroscope in a file of its own,
-/// row by row with the main log. One declaration, one check (an empty name
-/// is a usage error; a missing file an input error, as for the main log).
+/// row by row with the main log or at its own rate and stamps. One declaration, one check
+/// (an empty name is a usage error; a missing file an input error, as for the main log).
 /// --accel-topic TOPIC --gyro-topic TOPIC: the two sensor_msgs/Imu topics
 /// of a recording that publishes the sensors apart (the gyroscope's topic
 /// may be in the --gyro-log recording).

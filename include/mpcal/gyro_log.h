@@ -20,7 +20,8 @@ namespace mpcal {
 /// the header names (t/time..., and gx/gyr_x/gyro_x, wx, omega_x, rate_x or
 /// a bare x, and y, z), else t, x, y, z in order. `options` is read as for
 /// the main log (time unit, rate, gyroscope units: raw counts are allowed
-/// the ADC's range); its accelerometer units are not used.
+/// the ADC's range); its accelerometer units are not used. A recording
+/// (bag.h) gives the angular velocity of `options.topic`'s messages.
 /// \throws mpcal::Error as ReadLog, and (kColumns, kOption, with
 ///   Option::kGyroLogColumns in the advice) when the columns are not found.
 Recording ReadGyroLog(const std::string& path, LogOptions options);
