@@ -54,6 +54,9 @@ std::string DescribeOptions(const CalibrateFlags& f) {
              f.log.columns.empty() ? "" : " --columns " + f.log.columns) +
          (f.gyro_log.path.empty() ? "" : " --gyro-log " + f.gyro_log.path) +
          (f.gyro_log.columns.empty() ? "" : " --gyro-columns " + f.gyro_log.columns) +
+         (f.gyro_log.accel_topic.empty() ? ""
+                                         : " --accel-topic " + f.gyro_log.accel_topic) +
+         (f.gyro_log.gyro_topic.empty() ? "" : " --gyro-topic " + f.gyro_log.gyro_topic) +
          fmt::format(" --gyro-units {} --gyro-g-sensitivity {}",
                      ToString(f.log.gyro_units()),
                      ToString(f.calibrate.gyro.g_sensitivity));
@@ -112,10 +115,11 @@ void Run(CalibrateFlags& f) {
   std::optional<Calibration::InputLayout> input_layout = RecordedLayout(f.input, f.log);
   TerminalProgress progress("reading " + f.input);
   f.log.progress = progress.Callback();
-  Recording recording = ReadLog(f.input, f.log);
+  Recording recording = ReadLog(f.input, WithAccelTopic(f.log, f.gyro_log));
   progress.Done();
   PrintWarnings(recording.warnings);
-  PrintWarnings(MergeGyroLogFile(recording, f.gyro_log, f.log));
+  const MergedStreams streams = MergeGyroLogFile(recording, f.input, f.gyro_log, f.log);
+  PrintWarnings(streams.warnings);
 
   if (f.calibrate.counts_per_g > 0.0 && f.log.units != AccelUnits::kCounts) {
     throw Error("--counts-per-g is the scale of raw counts: it goes with --units counts");
@@ -139,6 +143,7 @@ void Run(CalibrateFlags& f) {
              recording.time_s.back() - recording.time_s.front(),
              ToString(f.calibrate.solve.model),
              f.calibrate.solve.gravity_mps2);
+  if (!streams.summary.empty()) fmt::print("{}\n", streams.summary);
   fmt::print("{}", FormatParameterTable(result.calibration, {}, f.verbose));
   if (f.verbose) fmt::print("\n{}", FormatFitSummary(result));
   if (result.gyro) {
@@ -190,8 +195,8 @@ void AddCalibrateCommand(CLI::App& root) {
                   "Calibration file to write (JSON: mpcal.imu/1 with the gyroscope, "
                   "mpcal.accelerometer/1 without); without it, only print")
       ->check(OutputPath);
-  AddGyroLogOptions(*app, flags->gyro_log);
   AddLogOptions(*app, flags->log);
+  AddGyroLogOptions(*app, flags->gyro_log);
   app->add_option(
          "--gyro-window",
          flags->calibrate.gyro.direction_window_s,
@@ -227,6 +232,9 @@ void AddCalibrateCommand(CLI::App& root) {
       "gx..gz)\n"
       "  mpcal calibrate xsens_acc.mat --gyro-log xsens_gyro.mat --units counts \\\n"
       "      --gyro-units counts --gravity 9.81744 -o xsens_imu.json\n"
+      "  mpcal calibrate TotalAcceleration.csv --gyro-log Gyroscope.csv -o phone.json\n"
+      "  mpcal calibrate d435i.bag --accel-topic /camera/accel/sample \\\n"
+      "      --gyro-topic /camera/gyro/sample -o d435i.json\n"
       "  mpcal calibrate six_poses.csv --model bias-scale-6 --latitude 49.6 --height "
       "300\n"
       "  mpcal calibrate arduino_serial.txt --units counts --counts-per-g 16384 -o "

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "explain.h"
+#include "mpcal/count.h"
 #include "mpcal/error.h"
 #include "mpcal/gravity.h"
 #include "mpcal/gyro_log.h"
@@ -135,10 +136,11 @@ void AddGyroLogOptions(CLI::App& app, GyroLogFlags& flags) {
   CLI::Option* log =
       app.add_option(std::string(FlagName(Option::kGyroLog)),
                      flags.path,
-                     "The gyroscope in a file of its own, the same rows as "
-                     "the log, in --gyro-units: a time column and three "
-                     "readings, named by its header (t, gx/gyr_x/wx/x, ...) "
-                     "or --gyro-columns, else t, x, y, z in order")
+                     "The gyroscope in a file (or recording) of its own, in "
+                     "--gyro-units: a time column and three readings, named by its "
+                     "header (t, gx/gyr_x/wx/x, ...) or --gyro-columns, else t, x, y, z "
+                     "in order; the same rows as the log, or its own rate and stamps "
+                     "(then averaged onto the log's rows)")
           ->check(InputPath)
           ->group("Input log");
   app.add_option(std::string(FlagName(Option::kGyroLogColumns)),
@@ -147,21 +149,102 @@ void AddGyroLogOptions(CLI::App& app, GyroLogFlags& flags) {
                  "(0-based indices); default: from its header, else t, x, y, z")
       ->needs(log)
       ->group("Input log");
+  CLI::Option* accel =
+      app.add_option(std::string(FlagName(Option::kAccelTopic)),
+                     flags.accel_topic,
+                     "The accelerometer's sensor_msgs/Imu topic when the recording "
+                     "publishes the sensors apart (its angular velocity is not used)")
+          ->group("Input log");
+  app.add_option(std::string(FlagName(Option::kGyroTopic)),
+                 flags.gyro_topic,
+                 "The gyroscope's sensor_msgs/Imu topic (in the input recording, or in "
+                 "--gyro-log's), at its own rate and stamps: averaged onto the "
+                 "accelerometer's messages")
+      ->group("Input log");
+  if (CLI::Option* topic =
+          app.get_option_no_throw(std::string(FlagName(Option::kLogTopic)))) {
+    accel->excludes(topic);
+  }
 }
 
-std::vector<std::string> MergeGyroLogFile(Recording& recording,
-                                          const GyroLogFlags& flags,
-                                          const LogOptions& log) {
-  if (flags.path.empty()) return {};
+LogOptions WithAccelTopic(LogOptions log, const GyroLogFlags& flags) {
+  if (!flags.accel_topic.empty()) log.topic = flags.accel_topic;
+  return log;
+}
+
+namespace {
+
+std::string DescribeFinding(StreamFinding finding,
+                            const StreamMerge& m,
+                            const std::string& accel,
+                            const std::string& gyro) {
+  switch (finding) {
+    case StreamFinding::kSpansDiffer:
+      return fmt::format(
+          "{} spans {:.3f} to {:.3f} s but {} spans {:.3f} to {:.3f} s: one stream is "
+          "much shorter, or their clocks disagree; only the overlap is calibrated",
+          accel,
+          m.accel_first_s,
+          m.accel_last_s,
+          gyro,
+          m.gyro_first_s,
+          m.gyro_last_s);
+    case StreamFinding::kGyroGap:
+      return fmt::format(
+          "{} has a gap of {:.3f} s at {:.3f} s ({:.0f} of its periods): the rates "
+          "across it are interpolated, so a turn made during it is not measured",
+          gyro,
+          m.gyro_gap_s,
+          m.gyro_gap_at_s,
+          m.gyro_gap_s * m.gyro_rate_hz);
+  }
+  return {};
+}
+
+}  // namespace
+
+MergedStreams MergeGyroLogFile(Recording& recording,
+                               const std::string& input,
+                               const GyroLogFlags& flags,
+                               const LogOptions& log) {
+  if (!flags.given()) return {};
   LogOptions options;
   options.columns = flags.columns;
   options.time_unit = log.time_unit;
   options.rate_hz = log.rate_hz;
   options.gyro_in_dps = log.gyro_in_dps;
   options.gyro_in_counts = log.gyro_in_counts;
-  const Recording gyro = ReadGyroLog(flags.path, options);
-  MergeGyroLog(recording, gyro, log.gyro_units());
-  return gyro.warnings;
+  options.topic = flags.gyro_topic;
+  const std::string path = flags.path.empty() ? input : flags.path;
+  const Recording gyro = ReadGyroLog(path, options);
+  // The gyroscope's own stream replaces whatever rates the accelerometer's
+  // messages carry (a driver's accelerometer topic may fill them with zeros).
+  if (!flags.gyro_topic.empty()) recording.gyro_radps.clear();
+  const std::size_t accel_rows = recording.size();
+  const StreamMerge m = MergeGyroLog(recording, gyro, log.gyro_units());
+  MergedStreams out;
+  out.warnings = gyro.warnings;
+  const std::string accel_name =
+      flags.gyro_topic.empty() ? recording.source : WithAccelTopic(log, flags).topic;
+  const std::string gyro_name = flags.gyro_topic.empty() ? gyro.source : flags.gyro_topic;
+  for (StreamFinding f : m.findings) {
+    out.warnings.push_back(DescribeFinding(f, m, accel_name, gyro_name));
+  }
+  if (m.resampled) {
+    out.summary = fmt::format(
+        "accelerometer {:.1f} Hz ({}), gyroscope {:.1f} Hz ({}): the "
+        "gyroscope averaged onto the accelerometer's stamps{}",
+        m.accel_rate_hz,
+        Count(accel_rows, "row"),
+        m.gyro_rate_hz,
+        Count(gyro.size(), "sample"),
+        m.rows_dropped_before + m.rows_dropped_after == 0
+            ? std::string()
+            : fmt::format("; {} outside the gyroscope's span dropped",
+                          Count(m.rows_dropped_before + m.rows_dropped_after,
+                                "accelerometer row")));
+  }
+  return out;
 }
 
 double GravityFlags::Resolve() const {

@@ -34,19 +34,40 @@ void AddLogOptions(CLI::App& app,
                    const CountsHelp& counts = kCalibrateCounts);
 
 /// --gyro-log FILE [--gyro-columns MAP]: the gyroscope in a file of its own,
-/// row by row with the main log. One declaration, one check (an empty name
-/// is a usage error; a missing file an input error, as for the main log).
+/// row by row with the main log or at its own rate and stamps. One declaration, one check
+/// (an empty name is a usage error; a missing file an input error, as for the main log).
+/// --accel-topic TOPIC --gyro-topic TOPIC: the two sensor_msgs/Imu topics
+/// of a recording that publishes the sensors apart (the gyroscope's topic
+/// may be in the --gyro-log recording).
 struct GyroLogFlags {
-  std::string path;     ///< empty: not given
-  std::string columns;  ///< LogOptions::columns of the gyroscope's log
+  std::string path;         ///< empty: not given
+  std::string columns;      ///< LogOptions::columns of the gyroscope's log
+  std::string accel_topic;  ///< empty: not given
+  std::string gyro_topic;   ///< empty: not given
+  /// The gyroscope is a stream of its own (a file or a topic).
+  bool given() const { return !path.empty() || !gyro_topic.empty(); }
 };
+/// Declares the flags; call after AddLogOptions (--accel-topic excludes
+/// --topic).
 void AddGyroLogOptions(CLI::App& app, GyroLogFlags& flags);
-/// With --gyro-log: reads the file (ReadGyroLog: the main log's time unit,
-/// rate and gyroscope units, its own columns) and merges it into
-/// `recording` (MergeGyroLog). Returns the gyroscope log's warnings.
-std::vector<std::string> MergeGyroLogFile(Recording& recording,
-                                          const GyroLogFlags& flags,
-                                          const LogOptions& log);
+/// The main log's options with --accel-topic as its topic.
+LogOptions WithAccelTopic(LogOptions log, const GyroLogFlags& flags);
+/// With --gyro-log or --gyro-topic: reads the gyroscope's stream (ReadGyroLog:
+/// the main log's time unit, rate and gyroscope units, its own columns or
+/// topic; a --gyro-topic without --gyro-log is read from `input`) and merges
+/// it into `recording` (MergeGyroLog), whose own angular velocity is then
+/// not used.
+struct MergedStreams {
+  /// The gyroscope log's warnings, then one per finding of the merge.
+  std::vector<std::string> warnings;
+  /// The two streams' rates and how they were joined; empty when they were
+  /// taken row by row (or there is no gyroscope stream).
+  std::string summary;
+};
+MergedStreams MergeGyroLogFile(Recording& recording,
+                               const std::string& input,
+                               const GyroLogFlags& flags,
+                               const LogOptions& log);
 
 /// --gravity | --latitude [--height]: the local magnitude of gravity.
 struct GravityFlags {

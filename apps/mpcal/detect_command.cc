@@ -201,9 +201,11 @@ void Run(DetectFlags& f) {
 
   TerminalProgress progress("reading " + f.input);
   f.log.progress = progress.Callback();
-  Recording rec = ReadLog(f.input, f.log);
+  Recording rec = ReadLog(f.input, WithAccelTopic(f.log, f.gyro_log));
   progress.Done();
-  for (const auto& w : MergeGyroLogFile(rec, f.gyro_log, f.log)) {
+  const MergedStreams streams = MergeGyroLogFile(rec, f.input, f.gyro_log, f.log);
+  if (!streams.summary.empty()) fmt::print("{}\n", streams.summary);
+  for (const auto& w : streams.warnings) {
     fmt::print("  note: {}\n", w);
   }
   WithDetectWords([&] { CheckUnits(rec, f.gravity.Resolve()); });
@@ -280,8 +282,8 @@ void AddDetectCommand(CLI::App& root) {
                   flags->json,
                   "Also write the intervals and the coverage as JSON (mpcal.detection/1)")
       ->check(OutputPath);
-  AddGyroLogOptions(*app, flags->gyro_log);
   AddLogOptions(*app, flags->log);
+  AddGyroLogOptions(*app, flags->gyro_log);
   AddGravityOptions(*app, flags->gravity);
   AddCalibrateOptions(*app, flags->calibrate);
   app->add_flag(

@@ -28,6 +28,8 @@ constexpr std::array kFlags{
     FlagSpelling{Option::kLogRecordingTime, "--time", "TIME"},
     FlagSpelling{Option::kGyroLog, "--gyro-log", "FILE"},
     FlagSpelling{Option::kGyroLogColumns, "--gyro-columns", "t=..,gx=..,gy=..,gz=.."},
+    FlagSpelling{Option::kAccelTopic, "--accel-topic", "TOPIC"},
+    FlagSpelling{Option::kGyroTopic, "--gyro-topic", "TOPIC"},
     FlagSpelling{Option::kGravity, "--gravity", "MPS2"},
     FlagSpelling{Option::kLatitude, "--latitude", "DEG"},
     FlagSpelling{Option::kHeight, "--height", "M"},

@@ -108,6 +108,13 @@ std::string ExplainUnits(const UnitsError& error) {
       hint = "the readings look like raw ADC counts: add " +
              FlagWithValue(error.advice().settings[0]);
       break;
+    case UnitsGuess::kGravityRemoved:
+      hint =
+          "this is acceleration with gravity removed, which calibration cannot use: "
+          "record the accelerometer with gravity (Sensor Logger: TotalAcceleration.csv "
+          "on Android, AccelerometerUncalibrated.csv on iOS; phyphox: 'Acceleration "
+          "with g')";
+      break;
     case UnitsGuess::kUnknown:
       hint = fmt::format(
           "check {} and {}", FlagName(Option::kLogUnits), FlagName(Option::kLogColumns));

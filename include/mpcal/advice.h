@@ -28,6 +28,8 @@ enum class Option {
   kLogRecordingTime,    ///< LogOptions::recording_time (a ROS bag or MCAP file)
   kGyroLog,             ///< the gyroscope's own log (gyro_log.h: ReadGyroLog's path)
   kGyroLogColumns,      ///< LogOptions::columns of the gyroscope's own log
+  kAccelTopic,          ///< LogOptions::topic when the gyroscope has a topic of its own
+  kGyroTopic,           ///< LogOptions::topic of the gyroscope's own stream
   kGravity,             ///< the gravity magnitude (CalibrateOptions::solve.gravity_mps2)
   kLatitude,            ///< the site's latitude, for normal gravity
   kHeight,              ///< the site's height, for normal gravity

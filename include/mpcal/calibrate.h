@@ -58,6 +58,10 @@ enum class UnitsGuess {
   kG,        ///< read as m/s², the readings are about 1: they are in g
   kMps2,     ///< read as g, the readings are about 9.8: they are in m/s²
   kCounts,   ///< far beyond any g: raw ADC counts
+  /// Below a twentieth of g whatever the units: acceleration with gravity
+  /// removed (a phone's "linear" or "user" acceleration), which holds no
+  /// gravity to calibrate against.
+  kGravityRemoved,
 };
 
 /// The readings do not fit their declared units (thrown by CheckUnits):

@@ -106,7 +106,8 @@ struct LogOptions {
   /// The log is a gyroscope's file of its own (gyro_log.h): its three
   /// reading columns (held in Recording::accel) are named by the header as a
   /// gyroscope's (gx, gyr_x, wx, x, ... and y, z), and `columns` maps them
-  /// with the keys t, gx, gy, gz.
+  /// with the keys t, gx, gy, gz; a recording's messages give their angular
+  /// velocity there.
   bool gyroscope_only = false;
   /// The gyroscope columns' units as gyro_in_dps and gyro_in_counts say.
   GyroUnits gyro_units() const {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,11 @@ struct StampOrder {
 /// reading (duplicates are reported and dropped by the reader).
 struct Recording {
   std::vector<double> time_s;
+  /// The log's clock at time_s = 0, ns: a robotics recording's first header
+  /// stamp (ns since the Unix epoch; its times are counted from it), 0 for a
+  /// text log (its times are its own clock). Two recordings' times compare
+  /// after adding it.
+  std::int64_t time_origin_ns = 0;
   /// Accelerometer readings (x, y, z) in `units`.
   std::vector<Eigen::Vector3d> accel;
   /// Gyroscope readings (rad/s); empty when the log has none. Raw counts

@@ -68,11 +68,13 @@ void RefuseTextOptions(const std::string& path, const LogOptions& options) {
 
 namespace {
 
-[[noreturn]] void ThrowNoAcceleration(const std::string& path, const std::string& topic) {
+[[noreturn]] void ThrowNotMeasured(const std::string& path,
+                                   const std::string& topic,
+                                   bool gyro_only) {
   throw Error(ErrorKind::kInput,
-              path + ": topic '" + topic +
-                  "' gives no linear acceleration (its covariance starts with -1: not "
-                  "measured)");
+              path + ": topic '" + topic + "' gives no " +
+                  (gyro_only ? "angular velocity" : "linear acceleration") +
+                  " (its covariance starts with -1: not measured)");
 }
 
 // Two int64 ns times whose difference overflows are not times.
@@ -88,11 +90,15 @@ namespace {
 struct HeldRows {
   ChunkRows rows;
   bool gyro = true;  // as the first message says, for every row
+  std::int64_t first_ns = 0;  // the first message's time, the rows' origin
 };
 
+// A gyroscope's own stream (`gyro_only`, gyro_log.h): its rates take the
+// accelerometer's place, as a gyroscope log's columns do.
 HeldRows ReadMessages(const std::string& path,
                       const std::string& topic,
                       RecordingTime time,
+                      bool gyro_only,
                       std::vector<std::string>& warnings) {
   HeldRows held;
   std::int64_t first_ns = 0;
@@ -105,15 +111,20 @@ HeldRows ReadMessages(const std::string& path,
           const std::int64_t t_ns =
               time == RecordingTime::kReceive ? m.receive_ns : m.stamp_ns;
           if (first) {
-            if (!m.has_linear_acceleration) ThrowNoAcceleration(path, topic);
-            first_ns = t_ns, first = false, held.gyro = m.has_angular_velocity;
+            const bool wanted =
+                gyro_only ? m.has_angular_velocity : m.has_linear_acceleration;
+            if (!wanted) ThrowNotMeasured(path, topic, gyro_only);
+            first_ns = t_ns, first = false;
+            held.first_ns = first_ns;
+            held.gyro = !gyro_only && m.has_angular_velocity;
           }
           std::int64_t offset_ns = 0;
           if (__builtin_sub_overflow(t_ns, first_ns, &offset_ns)) {
             ThrowTimesApart(path, topic);
           }
           held.rows.time.push_back(static_cast<double>(offset_ns));
-          held.rows.accel.push_back(m.linear_acceleration_mps2);
+          held.rows.accel.push_back(gyro_only ? m.angular_velocity_radps
+                                              : m.linear_acceleration_mps2);
           if (held.gyro) held.rows.gyro.push_back(m.angular_velocity_radps);
         }
       },
@@ -161,9 +172,14 @@ LogStreamSummary ReadBagRows(const std::string& path,
   rec->gyro_units = GyroUnits::kRadps;
   rec->source = path;
   std::vector<std::string> warnings;
-  HeldRows held = ReadMessages(path, topic, options.recording_time, warnings);
+  HeldRows held = ReadMessages(
+      path, topic, options.recording_time, options.gyroscope_only, warnings);
   StampOrder order = SortByTime(held.rows.time, held.rows.accel, held.rows.gyro);
   order.worst_back_s /= kNsPerS;  // sorted in ns
+  // The earliest time, so that two topics of one recording share a clock.
+  if (!held.rows.time.empty()) {
+    rec->time_origin_ns = held.first_ns + static_cast<std::int64_t>(held.rows.time.front());
+  }
   ToSecondsFromFirst(held.rows.time);
   held.rows.lines = held.rows.time.size();
   held.rows.last_row_line = held.rows.lines;

@@ -279,6 +279,35 @@ int ColumnNamed(const LogLayout& layout, const ColumnSpec& spec, const Naming& n
   return index;
 }
 
+// A header with no accelerometer names: bare axes x, y, z are the
+// accelerometer's (Sensor Logger writes `time,seconds_elapsed,z,y,x` in a
+// file per sensor, awesome-sensor-logger UNITS.md), and gravity-free
+// acceleration (phyphox's "Acceleration without g" exports `Linear
+// Acceleration x (m/s^2)`) is refused: the method measures gravity.
+void MapBareAxes(const std::string& source,
+                 const LogLayout& layout,
+                 ColumnOfRole* column) {
+  const char* axes = "xyz";
+  for (int c = 0; c < static_cast<int>(layout.column_names.size()); ++c) {
+    const std::string n = NormaliseName(layout.column_names[c]);
+    for (int i = 0; i < 3; ++i) {
+      if (n == std::string("linearacceleration") + axes[i]) {
+        throw Error(ErrorKind::kInput,
+                    fmt::format("{}:{}: column '{}' is acceleration with gravity "
+                                "removed; calibration measures gravity, so it needs "
+                                "the accelerometer's readings with gravity (phyphox: "
+                                "'Acceleration with g')",
+                                source,
+                                layout.header_line,
+                                layout.column_names[c]));
+      }
+      if (n == std::string(1, axes[i]) && (*column)[kAx + i] < 0) {
+        (*column)[kAx + i] = c;
+      }
+    }
+  }
+}
+
 // The header's names, then the explicit mapping over them.
 void MapFromHeader(const std::string& source,
                    std::vector<ColumnSpec> specs,
@@ -324,6 +353,9 @@ void MapFromHeader(const std::string& source,
                     layout->header_line,
                     fmt::join(layout->column_names, ", ")),
         Give({{naming.option, "t=NAME,gx=NAME,gy=NAME,gz=NAME"}}));
+  }
+  if ((*column)[kAx] < 0 && (*column)[kAy] < 0 && (*column)[kAz] < 0) {
+    MapBareAxes(source, *layout, column);
   }
   if ((*column)[kAx] < 0 && (*column)[kAy] < 0 && (*column)[kAz] < 0) {
     throw Error(

@@ -17,6 +17,9 @@ namespace {
 
 // The band a magnitude at rest must fall in (kPlausibleRestRatioLow,
 // kPlausibleRestRatioHigh) is plausible.h's, shared with inspection.
+// At rest a gravity-free accelerometer reads its noise and bias, a few
+// hundredths of g for a phone; with gravity in it, never less than half of g.
+constexpr double kGravityRemovedRatio = 0.05;
 
 // Rows between the magnitudes whose median is judged.
 constexpr std::size_t kMagnitudeStride = 16;
@@ -116,8 +119,13 @@ void CheckUnits(const UnitsEvidence& e, double gravity_mps2) {
   } else if (ratio * gravity_mps2 / kStandardGravityMps2 > 20.0) {
     f.guess = UnitsGuess::kCounts;
     looks = "raw ADC counts";
+  } else if (ratio < kGravityRemovedRatio) {
+    f.guess = UnitsGuess::kGravityRemoved;
+    looks = "acceleration with gravity removed";
   }
-  if (f.guess == UnitsGuess::kUnknown) {
+  if (f.guess == UnitsGuess::kGravityRemoved) {
+    // No unit or column mapping makes gravity-free readings calibratable.
+  } else if (f.guess == UnitsGuess::kUnknown) {
     advice.settings = {{Option::kLogUnits, ""}, {Option::kLogColumns, ""}};
   } else {
     const AccelUnits guessed = f.guess == UnitsGuess::kG      ? AccelUnits::kG

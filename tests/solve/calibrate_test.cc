@@ -144,6 +144,27 @@ TEST(CalibrateRecording, CatchesAGLogReadAsMps2InOneUnitSpelling) {
   }
 }
 
+// A phone's "linear" acceleration: each reading less gravity, so a still
+// phone reads its noise. No unit or column makes it calibratable; the
+// finding says what it is, with no units to advise.
+TEST(CalibrateRecording, RefusesAccelerationWithGravityRemoved) {
+  SimulatedSession s = SimulateStatic(Session("mti-g", 6));
+  for (Eigen::Vector3d& a : s.recording.accel) {
+    a -= a.normalized() * kStandardGravityMps2;
+  }
+  try {
+    CalibrateRecording(s.recording, {});
+    FAIL();
+  } catch (const UnitsError& e) {
+    EXPECT_LT(e.finding().median_magnitude, 0.05 * kStandardGravityMps2);
+    EXPECT_EQ(e.finding().guess, UnitsGuess::kGravityRemoved);
+    EXPECT_THAT(e.what(),
+                HasSubstr("the readings look like acceleration with gravity "
+                          "removed"));
+    EXPECT_TRUE(e.advice().settings.empty());
+  }
+}
+
 TEST(CalibrateRecording, RefusesTooFewPositionsAndSaysWhatToRecord) {
   SimulateStaticOptions options = Session("mti-g", 7);
   options.positions = 6;
