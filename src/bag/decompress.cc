@@ -18,6 +18,7 @@ namespace {
 // The output grows a step at a time, so a chunk claiming a huge size costs
 // only what its data really unpacks to.
 constexpr std::size_t kStepBytes = 1 << 20;
+constexpr std::size_t kLz4MaxBlockBytes = 4 << 20;
 
 // Makes room for at least one more byte than `expected` allows, so a stream
 // that unpacks to more than it claims is caught.
@@ -87,7 +88,11 @@ void Lz4(std::string_view input,
 #else
   (void)checked_after;
 #endif
-  out.Resize(0);
+  // LZ4 unpacks a block straight into the output only when the room there
+  // holds its largest block (4 MiB at most, the frame's BD byte); with less it
+  // unpacks into a buffer of its own and copies. The buffer is not
+  // zero-filled, so pages it does not write cost no memory.
+  out.Resize(kLz4MaxBlockBytes);
   std::size_t used = 0;
   std::size_t in_pos = 0;
   for (;;) {
