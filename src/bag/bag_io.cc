@@ -1,6 +1,13 @@
 #include "bag/bag_io.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
 #include <filesystem>
+#include <new>
 
 #include "mpcal/error.h"
 
@@ -11,20 +18,48 @@ BagFile::BagFile(const std::string& path) : path_(path) {
   if (std::filesystem::is_directory(path, ec)) {
     throw Error(ErrorKind::kIo, path + ": is a directory, not a bag file");
   }
-  in_.open(path, std::ios::binary);
-  if (!in_) throw Error(ErrorKind::kIo, path + ": cannot open the file");
-  in_.seekg(0, std::ios::end);
-  const auto end = in_.tellg();
-  if (end < 0) throw Error(ErrorKind::kIo, path + ": cannot read the file's size");
-  size_ = static_cast<std::uint64_t>(end);
+  fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd_ < 0) throw Error(ErrorKind::kIo, path + ": cannot open the file");
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0 || st.st_size < 0) {
+    ::close(fd_);
+    throw Error(ErrorKind::kIo, path + ": cannot read the file's size");
+  }
+  size_ = static_cast<std::uint64_t>(st.st_size);
 }
 
-std::string BagFile::ReadAt(std::uint64_t offset, std::uint64_t n, const char* what) {
-  if (offset > size_ || n > size_ - offset) {
+BagFile::~BagFile() { ::close(fd_); }
+
+void ByteBuffer::Free::operator()(char* p) const { std::free(p); }
+
+void ByteBuffer::Resize(std::size_t n) {
+  if (n > capacity_) {
+    char* grown = static_cast<char*>(std::realloc(data_.get(), n));
+    if (grown == nullptr) throw std::bad_alloc();
+    static_cast<void>(data_.release());
+    data_.reset(grown);
+    capacity_ = n;
+  }
+  size_ = n;
+}
+
+namespace {
+
+void CheckRange(std::uint64_t offset,
+                std::uint64_t n,
+                std::uint64_t size,
+                const char* what) {
+  if (offset > size || n > size - offset) {
     throw DataError(std::string(what) + " needs " + std::to_string(n) +
                     " bytes at byte " + std::to_string(offset) + " but the file has " +
-                    std::to_string(size_) + " bytes");
+                    std::to_string(size) + " bytes");
   }
+}
+
+}  // namespace
+
+std::string BagFile::ReadAt(std::uint64_t offset, std::uint64_t n, const char* what) {
+  CheckRange(offset, n, size_, what);
   std::string out = ReadSome(offset, n);
   if (out.size() != n) {
     throw Error(ErrorKind::kIo, path_ + ": read error at byte " + std::to_string(offset));
@@ -32,15 +67,35 @@ std::string BagFile::ReadAt(std::uint64_t offset, std::uint64_t n, const char* w
   return out;
 }
 
+std::string_view BagFile::ReadInto(std::uint64_t offset,
+                                   std::uint64_t n,
+                                   const char* what,
+                                   ByteBuffer& out) {
+  CheckRange(offset, n, size_, what);
+  out.Resize(static_cast<std::size_t>(n));
+  if (Pread(offset, out.size(), out.data()) != n) {
+    throw Error(ErrorKind::kIo, path_ + ": read error at byte " + std::to_string(offset));
+  }
+  return out.view();
+}
+
 std::string BagFile::ReadSome(std::uint64_t offset, std::uint64_t n) {
   if (offset >= size_) return {};
   if (n > size_ - offset) n = size_ - offset;
   std::string out(n, '\0');
-  in_.clear();
-  in_.seekg(static_cast<std::streamoff>(offset));
-  in_.read(out.data(), static_cast<std::streamsize>(n));
-  out.resize(static_cast<std::size_t>(in_.gcount()));
+  out.resize(Pread(offset, out.size(), out.data()));
   return out;
+}
+
+std::size_t BagFile::Pread(std::uint64_t offset, std::size_t n, char* out) {
+  std::size_t got = 0;
+  while (got < n) {
+    const ssize_t rc = ::pread(fd_, out + got, n - got, static_cast<off_t>(offset + got));
+    if (rc < 0 && errno == EINTR) continue;
+    if (rc <= 0) break;  // an error or the end: the caller sees fewer bytes
+    got += static_cast<std::size_t>(rc);
+  }
+  return got;
 }
 
 void ThrowBagError(const std::string& path, const std::string& what) {

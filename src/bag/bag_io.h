@@ -6,7 +6,7 @@
 
 #include <cstdint>
 #include <cstring>
-#include <fstream>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -71,23 +71,57 @@ class ByteCursor {
   std::size_t pos_ = 0;
 };
 
-/// A file read at offsets, never held whole.
+/// Bytes that are always written before they are read (a chunk as read, as
+/// unpacked): allocated without the zero-fill a std::string or std::vector
+/// makes first, which for megabyte chunks costs as much as the copy itself.
+class ByteBuffer {
+ public:
+  char* data() { return data_.get(); }
+  std::size_t size() const { return size_; }
+  std::string_view view() const { return {data_.get(), size_}; }
+  /// Makes the size `n`, keeping the first min(size, n) bytes; the others
+  /// hold whatever the allocator left there until written.
+  void Resize(std::size_t n);
+
+ private:
+  struct Free {
+    void operator()(char* p) const;
+  };
+  std::unique_ptr<char, Free> data_;
+  std::size_t size_ = 0;
+  std::size_t capacity_ = 0;
+};
+
+/// A file read at offsets, never held whole. Each read is one pread(2) into
+/// its result: the readers jump between records, and a stream's buffer would
+/// be refilled (and its bytes copied once more) after every seek.
 class BagFile {
  public:
   /// \throws mpcal::Error when the file cannot be opened.
   explicit BagFile(const std::string& path);
+  ~BagFile();
+  BagFile(const BagFile&) = delete;
+  BagFile& operator=(const BagFile&) = delete;
 
   const std::string& path() const { return path_; }
   std::uint64_t size() const { return size_; }
   /// Reads `n` bytes at `offset`.
   /// \throws DataError when they run past the end of the file.
   std::string ReadAt(std::uint64_t offset, std::uint64_t n, const char* what);
+  /// Like ReadAt, into `out` (a chunk: no zero-fill first); views `out`.
+  std::string_view ReadInto(std::uint64_t offset,
+                            std::uint64_t n,
+                            const char* what,
+                            ByteBuffer& out);
   /// Like ReadAt but returns what there is (fewer bytes at the end).
   std::string ReadSome(std::uint64_t offset, std::uint64_t n);
 
  private:
+  /// Reads up to `n` bytes at `offset` into `out`; returns how many.
+  std::size_t Pread(std::uint64_t offset, std::size_t n, char* out);
+
   std::string path_;
-  std::ifstream in_;
+  int fd_ = -1;
   std::uint64_t size_ = 0;
 };
 

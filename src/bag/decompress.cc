@@ -1,6 +1,7 @@
 #include "bag/decompress.h"
 
 #include <bzlib.h>
+#include <lz4.h>
 #include <lz4frame.h>
 #include <zstd.h>
 
@@ -17,16 +18,17 @@ namespace {
 // The output grows a step at a time, so a chunk claiming a huge size costs
 // only what its data really unpacks to.
 constexpr std::size_t kStepBytes = 1 << 20;
+constexpr std::size_t kLz4MaxBlockBytes = 4 << 20;
 
 // Makes room for at least one more byte than `expected` allows, so a stream
 // that unpacks to more than it claims is caught.
-char* Grow(std::string& out,
+char* Grow(ByteBuffer& out,
            std::size_t& used,
            std::uint64_t expected,
            std::size_t& room) {
   if (used == out.size()) {
     const std::uint64_t limit = expected + 1;
-    out.resize(static_cast<std::size_t>(
+    out.Resize(static_cast<std::size_t>(
         std::min<std::uint64_t>(limit, out.size() + kStepBytes)));
   }
   room = out.size() - used;
@@ -42,7 +44,7 @@ char* Grow(std::string& out,
       " bytes; the chunk header says " + std::to_string(expected));
 }
 
-std::string Bz2(std::string_view input, std::uint64_t expected) {
+void Bz2(std::string_view input, std::uint64_t expected, ByteBuffer& out) {
   bz_stream s{};
   if (BZ2_bzDecompressInit(&s, 0, 0) != BZ_OK) throw DataError("bz2: cannot initialise");
   std::unique_ptr<bz_stream, int (*)(bz_stream*)> guard(&s, BZ2_bzDecompressEnd);
@@ -50,7 +52,7 @@ std::string Bz2(std::string_view input, std::uint64_t expected) {
     throw DataError("bz2: chunk too large");
   s.next_in = const_cast<char*>(input.data());
   s.avail_in = static_cast<unsigned>(input.size());
-  std::string out;
+  out.Resize(0);
   std::size_t used = 0;
   for (;;) {
     std::size_t room = 0;
@@ -65,18 +67,32 @@ std::string Bz2(std::string_view input, std::uint64_t expected) {
     if (s.avail_in == 0 && s.avail_out != 0) throw DataError("bz2 data ends early");
   }
   if (used != expected) SizeMismatch("bz2", used, expected);
-  out.resize(used);
-  return out;
+  out.Resize(used);
 }
 
-std::string Lz4(std::string_view input, std::uint64_t expected) {
+void Lz4(std::string_view input,
+         std::uint64_t expected,
+         bool checked_after,
+         ByteBuffer& out) {
   LZ4F_dctx* raw = nullptr;
   if (LZ4F_isError(LZ4F_createDecompressionContext(&raw, LZ4F_VERSION))) {
     throw DataError("lz4: cannot initialise");
   }
   std::unique_ptr<LZ4F_dctx, LZ4F_errorCode_t (*)(LZ4F_dctx*)> guard(
       raw, LZ4F_freeDecompressionContext);
-  std::string out;
+  LZ4F_decompressOptions_t options{};
+  // skipChecksums is in lz4 from 1.9.4 (Debian bookworm); with an older one
+  // the frame's checksum is verified as well.
+#if LZ4_VERSION_NUMBER >= 10904
+  options.skipChecksums = checked_after ? 1 : 0;
+#else
+  (void)checked_after;
+#endif
+  // LZ4 unpacks a block straight into the output only when the room there
+  // holds its largest block (4 MiB at most, the frame's BD byte); with less it
+  // unpacks into a buffer of its own and copies. The buffer is not
+  // zero-filled, so pages it does not write cost no memory.
+  out.Resize(kLz4MaxBlockBytes);
   std::size_t used = 0;
   std::size_t in_pos = 0;
   for (;;) {
@@ -84,7 +100,7 @@ std::string Lz4(std::string_view input, std::uint64_t expected) {
     char* dst = Grow(out, used, expected, room);
     std::size_t src_size = input.size() - in_pos;
     const std::size_t hint =
-        LZ4F_decompress(raw, dst, &room, input.data() + in_pos, &src_size, nullptr);
+        LZ4F_decompress(raw, dst, &room, input.data() + in_pos, &src_size, &options);
     if (LZ4F_isError(hint)) {
       throw DataError(std::string("lz4 frame is damaged (") + LZ4F_getErrorName(hint) +
                       ")");
@@ -96,18 +112,17 @@ std::string Lz4(std::string_view input, std::uint64_t expected) {
     if (in_pos == input.size() && room == 0) throw DataError("lz4 frame ends early");
   }
   if (used != expected) SizeMismatch("lz4", used, expected);
-  out.resize(used);
-  return out;
+  out.Resize(used);
 }
 
-std::string Zstd(std::string_view input, std::uint64_t expected) {
+void Zstd(std::string_view input, std::uint64_t expected, ByteBuffer& out) {
   std::unique_ptr<ZSTD_DCtx, std::size_t (*)(ZSTD_DCtx*)> ctx(ZSTD_createDCtx(),
                                                               ZSTD_freeDCtx);
   if (!ctx) throw DataError("zstd: cannot initialise");
   // A window beyond the chunk's size would only serve a hostile frame.
   ZSTD_DCtx_setParameter(ctx.get(), ZSTD_d_windowLogMax, 30);
   ZSTD_inBuffer in{input.data(), input.size(), 0};
-  std::string out;
+  out.Resize(0);
   std::size_t used = 0;
   for (;;) {
     std::size_t room = 0;
@@ -124,8 +139,7 @@ std::string Zstd(std::string_view input, std::uint64_t expected) {
     if (in.pos == in.size && o.pos < o.size) throw DataError("zstd data ends early");
   }
   if (used != expected) SizeMismatch("zstd", used, expected);
-  out.resize(used);
-  return out;
+  out.Resize(used);
 }
 
 }  // namespace
@@ -134,9 +148,11 @@ bool IsKnownCompression(std::string_view c) {
   return c.empty() || c == "none" || c == "bz2" || c == "lz4" || c == "zstd";
 }
 
-std::string Decompress(std::string_view compression,
-                       std::string_view input,
-                       std::uint64_t expected_size) {
+std::string_view Decompress(std::string_view compression,
+                            std::string_view input,
+                            std::uint64_t expected_size,
+                            ByteBuffer& out,
+                            bool checked_after) {
   if (expected_size > kBagMaxChunkBytes) {
     throw DataError("a chunk of " + std::to_string(expected_size) +
                     " bytes unpacked is above the cap of " +
@@ -145,12 +161,26 @@ std::string Decompress(std::string_view compression,
   if (compression.empty() || compression == "none") {
     if (input.size() != expected_size)
       SizeMismatch("stored", input.size(), expected_size);
-    return std::string(input);
+    return input;
   }
-  if (compression == "bz2") return Bz2(input, expected_size);
-  if (compression == "lz4") return Lz4(input, expected_size);
-  if (compression == "zstd") return Zstd(input, expected_size);
-  throw DataError("unknown compression '" + std::string(compression) + "'");
+  if (compression == "bz2") {
+    Bz2(input, expected_size, out);
+  } else if (compression == "lz4") {
+    Lz4(input, expected_size, checked_after, out);
+  } else if (compression == "zstd") {
+    Zstd(input, expected_size, out);
+  } else {
+    throw DataError("unknown compression '" + std::string(compression) + "'");
+  }
+  return out.view();
+}
+
+std::string Decompress(std::string_view compression,
+                       std::string_view input,
+                       std::uint64_t expected_size,
+                       bool checked_after) {
+  ByteBuffer out;
+  return std::string(Decompress(compression, input, expected_size, out, checked_after));
 }
 
 }  // namespace mpcal::bag

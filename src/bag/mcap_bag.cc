@@ -138,9 +138,12 @@ void VisitChunk(BagFile& file,
   }
   if (v.open_chunk && !v.open_chunk(offset)) return;
   if (r.body_length > kBagMaxChunkBytes) throw DataError("a chunk above the size cap");
-  const std::string body = file.ReadAt(r.body_offset, r.body_length, "the chunk");
-  const ChunkHeader h = ParseChunk(body);
-  const std::string records = Decompress(h.compression, h.records, h.uncompressed_size);
+  ByteBuffer body, unpacked;
+  const ChunkHeader h =
+      ParseChunk(file.ReadInto(r.body_offset, r.body_length, "the chunk", body));
+  // A chunk with a CRC (0 means none) is checked once, by it, below.
+  const std::string_view records = Decompress(
+      h.compression, h.records, h.uncompressed_size, unpacked, h.uncompressed_crc != 0);
   if (h.uncompressed_crc != 0 && Crc32(records) != h.uncompressed_crc) {
     throw DataError("the CRC-32 of the unpacked records does not match the chunk's");
   }

@@ -120,7 +120,7 @@ Opened Open(BagFile& file, std::vector<std::string>& warnings) {
   return opened;
 }
 
-void WalkChunk(const std::string& contents, const Visitor& v) {
+void WalkChunk(std::string_view contents, const Visitor& v) {
   std::uint64_t offset = 0;
   while (offset < contents.size()) {
     const Record r = ros1::RecordIn(contents, offset);
@@ -154,8 +154,13 @@ void VisitRecord(BagFile& file, std::uint64_t offset, const Record& r, const Vis
       if (v.open_chunk && !v.open_chunk(offset)) return;
       if (r.data_length > kBagMaxChunkBytes)
         throw DataError("a chunk above the size cap");
-      const std::string packed = file.ReadAt(r.data_offset, r.data_length, "the chunk");
-      WalkChunk(Decompress(compression, packed, ros1::U32Field(r.fields, "size")), v);
+      ByteBuffer packed, unpacked;
+      WalkChunk(
+          Decompress(compression,
+                     file.ReadInto(r.data_offset, r.data_length, "the chunk", packed),
+                     ros1::U32Field(r.fields, "size"),
+                     unpacked),
+          v);
       return;
     }
     case ros1::kConnection:

@@ -1,35 +1,71 @@
 #include "bag/ros1_records.h"
 
+#include <cstring>
+
 #include "mpcal/bag.h"
 
 namespace mpcal::bag::ros1 {
 namespace {
 
 std::string_view Need(const Fields& fields, std::string_view name, std::size_t size) {
-  const auto it = fields.find(name);
-  if (it == fields.end()) throw DataError("no '" + std::string(name) + "' field");
-  if (size != 0 && it->second.size() != size) {
+  const std::optional<std::string_view> value = fields.Find(name);
+  if (!value) throw DataError("no '" + std::string(name) + "' field");
+  if (size != 0 && value->size() != size) {
     throw DataError("field '" + std::string(name) + "' has " +
-                    std::to_string(it->second.size()) + " bytes, not " +
+                    std::to_string(value->size()) + " bytes, not " +
                     std::to_string(size));
   }
-  return it->second;
+  return *value;
 }
 
-}  // namespace
-
-Fields ParseFields(std::string_view header) {
-  Fields fields;
+void CheckFields(std::string_view header) {
   ByteCursor c(header);
   while (!c.empty()) {
     const std::string_view field =
         c.Bytes(c.U32("a header field's length"), "a header field");
-    const std::size_t eq = field.find('=');
-    if (eq == std::string_view::npos) throw DataError("a header field without '='");
-    fields.insert_or_assign(std::string(field.substr(0, eq)),
-                            std::string(field.substr(eq + 1)));
+    if (field.find('=') == std::string_view::npos)
+      throw DataError("a header field without '='");
   }
+}
+
+}  // namespace
+
+Fields Fields::Viewing(std::string_view header) {
+  CheckFields(header);
+  Fields fields;
+  fields.view_ = header;
   return fields;
+}
+
+Fields Fields::Owning(std::string header) {
+  CheckFields(header);
+  Fields fields;
+  fields.owned_ = std::move(header);
+  fields.owning_ = true;
+  return fields;
+}
+
+std::optional<std::string_view> Fields::Find(std::string_view name) const {
+  // The header was checked when the fields were made: every length fits and
+  // every field has an '='.
+  const std::string_view header = bytes();
+  std::optional<std::string_view> found;
+  std::size_t pos = 0;
+  while (pos < header.size()) {
+    std::uint32_t length = 0;
+    std::memcpy(&length, header.data() + pos, sizeof length);
+    const std::string_view field = header.substr(pos + sizeof length, length);
+    pos += sizeof length + length;
+    if (field.size() > name.size() && field[name.size()] == '=' &&
+        field.starts_with(name)) {
+      found = field.substr(name.size() + 1);
+    }
+  }
+  return found;
+}
+
+Fields ParseFields(std::string_view header) {
+  return Fields::Owning(std::string(header));
 }
 
 std::uint8_t OpOf(const Fields& fields) {
@@ -54,7 +90,7 @@ Record RecordIn(std::string_view buffer, std::uint64_t offset) {
   ByteCursor c(buffer);
   c.Skip(offset, "the record start");
   Record r;
-  r.fields = ParseFields(c.Bytes(c.U32("the header length"), "the record header"));
+  r.fields = Fields::Viewing(c.Bytes(c.U32("the header length"), "the record header"));
   r.op = OpOf(r.fields);
   r.data_length = c.U32("the data length");
   r.data_offset = c.offset();
@@ -64,19 +100,37 @@ Record RecordIn(std::string_view buffer, std::uint64_t offset) {
 }
 
 Record RecordAt(BagFile& file, std::uint64_t offset) {
-  const std::string length = file.ReadAt(offset, 4, "the header length");
-  const std::uint32_t header_length = ByteCursor(length).U32("the header length");
+  // One read covers the lengths and the header of a usual record; a longer
+  // header (a connection's) is read on its own.
+  constexpr std::uint64_t kFirstReadBytes = 512;
+  const std::string first = file.ReadSome(offset, kFirstReadBytes);
+  std::uint32_t header_length = 0;
+  if (first.size() >= 4) {
+    header_length = ByteCursor(first).U32("the header length");
+  } else {
+    const std::string length = file.ReadAt(offset, 4, "the header length");
+    header_length = ByteCursor(length).U32("the header length");
+  }
   if (header_length > kBagMaxFieldBytes) {
     throw DataError("a record header of " + std::to_string(header_length) +
                     " bytes is above the cap of " + std::to_string(kBagMaxFieldBytes));
   }
-  const std::string header = file.ReadAt(offset + 4, header_length, "the record header");
   Record r;
-  r.fields = ParseFields(header);
-  r.op = OpOf(r.fields);
   const std::uint64_t data_at = offset + 4 + header_length;
-  const std::string data_length = file.ReadAt(data_at, 4, "the data length");
-  r.data_length = ByteCursor(data_length).U32("data length");
+  std::uint32_t data_length = 0;
+  if (first.size() >= 4 + std::uint64_t{header_length} + 4) {
+    ByteCursor c(first);
+    c.Skip(4, "the header length");
+    r.fields = ParseFields(c.Bytes(header_length, "the record header"));
+    data_length = c.U32("the data length");
+  } else {
+    r.fields =
+        Fields::Owning(file.ReadAt(offset + 4, header_length, "the record header"));
+    const std::string length = file.ReadAt(data_at, 4, "the data length");
+    data_length = ByteCursor(length).U32("data length");
+  }
+  r.op = OpOf(r.fields);
+  r.data_length = data_length;
   r.data_offset = data_at + 4;
   if (r.data_length > file.size() - r.data_offset) {
     throw DataError("the record data needs " + std::to_string(r.data_length) +

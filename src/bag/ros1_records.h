@@ -10,7 +10,6 @@
 #pragma once
 
 #include <cstdint>
-#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -30,10 +29,33 @@ enum Op : std::uint8_t {
   kConnection = 0x07,
 };
 
-/// A record's header fields, "name" -> raw value bytes.
-using Fields = std::map<std::string, std::string, std::less<>>;
+/// A record's header fields (u32 length + "name=value" each), checked once
+/// and then looked up in place by a scan: a header holds three to six fields,
+/// and a message record's header is read for every message, so building a
+/// map of strings for each would cost more than the message's decoding.
+class Fields {
+ public:
+  Fields() = default;
+  /// Fields over `header`, which must outlive them (a chunk's contents).
+  /// \throws DataError for a field without '=' or running past the header.
+  static Fields Viewing(std::string_view header);
+  /// Fields over their own copy of `header`.
+  static Fields Owning(std::string header);
 
-/// Parses the header fields of one record (u32 length + "name=value" each).
+  /// The value of the field `name`; of the last one when a name repeats, as
+  /// rosbag's reader keeps the last (bag.py 2013-2052, a dict).
+  std::optional<std::string_view> Find(std::string_view name) const;
+  std::size_t count(std::string_view name) const { return Find(name) ? 1 : 0; }
+
+ private:
+  std::string_view bytes() const { return owning_ ? std::string_view(owned_) : view_; }
+
+  std::string owned_;
+  std::string_view view_;
+  bool owning_ = false;
+};
+
+/// Parses the header fields of one record into fields that own their bytes.
 /// \throws DataError for a field without '=' or running past the header.
 Fields ParseFields(std::string_view header);
 
@@ -57,7 +79,8 @@ struct Record {
   std::uint64_t next = 0;
 };
 
-/// Reads the record whose header starts at `offset` in `buffer`.
+/// Reads the record whose header starts at `offset` in `buffer`; its fields
+/// view `buffer`, which must outlive them.
 /// \throws DataError when a length runs past the buffer.
 Record RecordIn(std::string_view buffer, std::uint64_t offset);
 

@@ -362,6 +362,21 @@ TEST(ReadImuMessages, McapChunkCrcIsChecked) {
       ::testing::AllOf(HasSubstr("crc.mcap: chunk at byte"), HasSubstr("CRC-32")));
 }
 
+// An lz4 chunk with a CRC is checked by it alone (the LZ4 frame's own
+// checksum is skipped): a damaged literal still unpacks, and the CRC finds it.
+TEST(ReadImuMessages, McapLz4ChunkDamageIsFoundByTheCrc) {
+  ScratchDir dir;
+  std::string mcap = ReadFile(Bag("imu_cdr_be_lz4.mcap"));  // @mcap/core, CRC written
+  const std::size_t chunk = FindNth(mcap, std::string("\x03\0\0\0lz4", 7), 3);
+  const std::size_t literal = mcap.find("imu_link", chunk);
+  ASSERT_NE(literal, std::string::npos);
+  mcap[literal] = 'J';
+  std::vector<std::string> w;
+  EXPECT_THAT(
+      Error([&] { ReadAll(dir.Write("lz4crc.mcap", mcap), w); }),
+      ::testing::AllOf(HasSubstr("lz4crc.mcap: chunk at byte"), HasSubstr("CRC-32")));
+}
+
 // A chunk that claims more than the cap is refused before anything is
 // allocated for it.
 TEST(ReadImuMessages, AChunkSizeAboveTheCapIsRefused) {
