@@ -218,6 +218,32 @@ TEST(FilterNoise, KfGinsPropagatesEachAxissScatter) {
   EXPECT_TRUE(corrtime_noted);
 }
 
+// KF-GINS's Gauss-Markov bias (gi_engine.cpp: process noise 2 sigma^2 / T,
+// decay 1/T) walks at times short against T with density sqrt(2/T) sigma:
+// the file's corrtime makes it the measured random walk K of the axis it
+// names, from the shortest T = 2B^2/K^2.
+TEST(FilterNoise, KfGinsCorrelationTimeGivesTheRandomWalk) {
+  NoiseFile noise = ReadNoiseFile(TestDataPath("noise_still.json"));
+  const double b[3] = {2e-4, 3e-4, 5e-4},
+               k[3] = {4e-6, 3e-6, 2e-6};  // rad/s, rad/s^2/sqrt(Hz)
+  for (int i = 0; i < 3; ++i) {
+    TermEstimate& bi = noise.result.gyro_radps->axes[i].terms[2];
+    TermEstimate& ki = noise.result.gyro_radps->axes[i].terms[3];
+    bi.status = ki.status = TermStatus::kMeasured;
+    bi.value = b[i];
+    ki.value = k[i];
+  }
+  ExportSources s;
+  s.noise = &noise;
+  const ExportedFile f = Export(*FindExportFormat("kf-gins"), s, ExportOptions{});
+  const double t_s = KeyValue(f.text, "  corrtime") * 3600.0;
+  // Shortest T: x, 2 (2e-4)^2 / (4e-6)^2 = 5000 s.
+  EXPECT_NEAR(t_s, 5000.0, 0.01);
+  EXPECT_THAT(f.text, HasSubstr("from the gyroscope x axis"));
+  const double sigma = KeyTriple(f.text, "gbstd")[0] * kPi / 180.0 / 3600.0;
+  EXPECT_NEAR(std::sqrt(2.0 * sigma * sigma / t_s), k[0], 1e-5 * k[0]);
+}
+
 // sensor_msgs/Imu: the diagonal is the variance of one sample, per axis.
 TEST(FilterNoise, RosCovarianceIsEachAxissSampleVariance) {
   const StillRecord r = ReadStill();
