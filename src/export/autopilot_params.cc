@@ -15,15 +15,12 @@
 #include <string>
 #include <vector>
 
+#include <fast_float/fast_float.h>
 #include <fmt/format.h>
 #include <Eigen/Dense>
 
 #include "export/filter_formats.h"
 #include "mpcal/error.h"
-
-#ifndef MPCAL_VERSION
-#define MPCAL_VERSION "unknown"
-#endif
 
 namespace mpcal {
 
@@ -253,14 +250,13 @@ std::map<std::string, std::pair<double, int>> ParseParameterLines(
       name = line.substr(0, sep);
       value = line.substr(start, line.find_first_of(", =\t", start) - start);
     }
-    std::size_t used = 0;
+    // The whole field a number, in any locale (fast_float, as mpcal's
+    // readers of logs).
     double v = std::numeric_limits<double>::quiet_NaN();
-    try {
-      v = std::stod(value, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != value.size() || !std::isfinite(v)) {
+    const auto parsed =
+        fast_float::from_chars(value.data(), value.data() + value.size(), v);
+    if (value.empty() || parsed.ec != std::errc() ||
+        parsed.ptr != value.data() + value.size() || !std::isfinite(v)) {
       throw Error(ErrorKind::kInput,
                   fmt::format("{}: line {}: {} has the value '{}', not a finite number",
                               origin,
@@ -326,6 +322,8 @@ ImportedCalibration ReadAutopilot(const std::vector<ImportFile>& files,
     g.bias_radps = gyro_bias;
     c.gyroscope = g;
   }
+  c.imported_from =
+      autopilot == Autopilot::kPx4 ? "PX4 parameters" : "ArduPilot parameters";
   c.provenance = Provenance{MPCAL_VERSION, origin, ""};
   return imported;
 }

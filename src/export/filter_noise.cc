@@ -13,10 +13,6 @@
 #include "mpcal/error.h"
 #include "mpcal/noise_file.h"
 
-#ifndef MPCAL_VERSION
-#define MPCAL_VERSION "unknown"
-#endif
-
 namespace mpcal::export_formats {
 
 namespace {
