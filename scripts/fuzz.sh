@@ -11,7 +11,7 @@ set -euo pipefail
 seconds=${1:-60}
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${FUZZ_BUILD:-$root/build-fuzz}
-targets=${FUZZ_TARGETS:-"log_reader calibration_file gnss_reader bag_reader"}
+targets=${FUZZ_TARGETS:-"log_reader calibration_file gnss_reader bag_reader import"}
 jobs=${JOBS:-$(nproc)}
 
 # Debian's clang (bookworm: 14); libFuzzer comes with it.

@@ -26,5 +26,7 @@ void AddSimulateNoiseCommand(CLI::App& simulate);
 void AddReportCommand(CLI::App& root);
 void AddDemoCommand(CLI::App& root);
 void AddNoiseCommand(CLI::App& root);
+void AddExportCommand(CLI::App& root);
+void AddImportCommand(CLI::App& root);
 
 }  // namespace mpcal::cli

@@ -24,7 +24,7 @@ std::string Row(const std::string& label,
   std::string out = fmt::format("{:<22} {:>12.3f} {:>10}",
                                 label,
                                 value,
-                                sigma ? fmt::format("{:.3f}", *sigma) : "-");
+                                sigma ? fmt::format("{:.3f}", *sigma) : "no 1σ");
   if (extra) out += fmt::format(" {:>12.3f}", *extra);
   return out + fmt::format("  {}\n", unit);
 }

@@ -115,7 +115,7 @@ std::string FormatRepeatabilityTable(const RepeatabilityResult& result) {
       out += fmt::format(" {:>{}.{}f}", v * style.per_si, kValueWidth, style.decimals);
     }
     // The trials' own 1σ as one figure: the RMS over trials.
-    std::string sigma = "-";
+    std::string sigma = "no 1σ";
     if (!row.trial_std.empty()) {
       double sum = 0.0;
       for (double s : row.trial_std) sum += s * s;
