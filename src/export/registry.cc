@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "export/filter_formats.h"
 #include "export/formats.h"
 #include "mpcal/calibration_file.h"
 #include "mpcal/error.h"
@@ -21,6 +22,12 @@ const std::vector<ExportFormat>& ExportFormats() {
       export_formats::ImuTk(),
       export_formats::ImuTkAccel(),
       export_formats::ImuTkGyro(),
+      export_formats::OrbSlam3(),
+      export_formats::Vins(),
+      export_formats::KfGins(),
+      export_formats::RosImu(),
+      export_formats::Px4(),
+      export_formats::ArduPilot(),
   };
   return formats;
 }
