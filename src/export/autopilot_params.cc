@@ -115,22 +115,14 @@ AutopilotLoss AutopilotModelLoss(const Calibration& c) {
 
 namespace {
 
-ExportedFile WriteAutopilot(const ExportSources& s, Autopilot autopilot) {
-  const Calibration& c = *s.calibration;
-  const std::string& input = s.calibration_path;
-  if (c.input_units == AccelUnits::kCounts ||
-      (c.gyroscope && c.gyroscope->input_units == GyroUnits::kCounts)) {
-    throw Error(
-        ErrorKind::kUnits,
-        fmt::format("'{}' calibrates raw counts; an autopilot applies its parameters to "
-                    "its driver's m/s^2 and rad/s: calibrate a log of those readings",
-                    input));
-  }
+// The comment lines that open the file: the model, what it drops for this
+// sensor, and how the ground station loads it.
+std::string AutopilotHeader(const Calibration& c,
+                            Autopilot autopilot,
+                            const std::string& input) {
   const bool px4 = autopilot == Autopilot::kPx4;
-  const ParameterNames names = NamesOf(autopilot);
   const AutopilotLoss loss = AutopilotModelLoss(c);
-  ExportedFile f;
-  std::string& t = f.text;
+  std::string t;
   const auto comment = [&](const std::string& line) { t += AutopilotComment(line); };
   if (px4) comment("Onboard parameters for Vehicle 1");
   comment(fmt::format(
@@ -167,8 +159,57 @@ ExportedFile WriteAutopilot(const ExportSources& s, Autopilot autopilot) {
   } else {
     comment("INS_GYR_CAL=1 (default) measures the gyroscope offsets at every boot.");
   }
-  for (int i = 0; i < 3; ++i)
+  return t;
+}
+
+// What the model drops, as facts: the largest entry of each term.
+std::vector<ExportNote> AutopilotNotes(const Calibration& c) {
+  std::vector<ExportNote> notes;
+  const ErrorModel& m = c.model;
+  notes.push_back(ExportNote{
+      ExportNoteKind::kTermDropped,
+      "non_orthogonality",
+      std::max(
+          {std::abs(m.theta_yz_rad), std::abs(m.theta_zx_rad), std::abs(m.theta_zy_rad)}),
+      "rad",
+      std::nullopt});
+  if (c.gyroscope) {
+    notes.push_back(
+        ExportNote{ExportNoteKind::kTermDropped,
+                   "gyroscope_m",
+                   (c.gyroscope->m - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(),
+                   "",
+                   std::nullopt});
+    if (c.gyroscope->g_sensitivity_radps_per_mps2) {
+      notes.push_back(
+          ExportNote{ExportNoteKind::kTermDropped,
+                     "g_sensitivity",
+                     c.gyroscope->g_sensitivity_radps_per_mps2->cwiseAbs().maxCoeff(),
+                     "rad/s per m/s^2",
+                     std::nullopt});
+    }
+  }
+  return notes;
+}
+
+ExportedFile WriteAutopilot(const ExportSources& s, Autopilot autopilot) {
+  const Calibration& c = *s.calibration;
+  const std::string& input = s.calibration_path;
+  if (c.input_units == AccelUnits::kCounts ||
+      (c.gyroscope && c.gyroscope->input_units == GyroUnits::kCounts)) {
+    throw Error(
+        ErrorKind::kUnits,
+        fmt::format("'{}' calibrates raw counts; an autopilot applies its parameters to "
+                    "its driver's m/s^2 and rad/s: calibrate a log of those readings",
+                    input));
+  }
+  const ParameterNames names = NamesOf(autopilot);
+  ExportedFile f;
+  std::string& t = f.text;
+  t = AutopilotHeader(c, autopilot, input);
+  for (int i = 0; i < 3; ++i) {
     t += ParameterLine(autopilot, names.acc_off[i], c.model.bias_mps2[i]);
+  }
   for (int i = 0; i < 3; ++i) {
     t += ParameterLine(
         autopilot, names.acc_scale[i], 1.0 / (1.0 + c.model.scale_factor_error[i]));
@@ -178,31 +219,7 @@ ExportedFile WriteAutopilot(const ExportSources& s, Autopilot autopilot) {
       t += ParameterLine(autopilot, names.gyro_off[i], c.gyroscope->bias_radps[i]);
     }
   }
-  // What the model drops, as facts: the largest entry of each term.
-  const ErrorModel& m = c.model;
-  f.notes.push_back(ExportNote{
-      ExportNoteKind::kTermDropped,
-      "non_orthogonality",
-      std::max(
-          {std::abs(m.theta_yz_rad), std::abs(m.theta_zx_rad), std::abs(m.theta_zy_rad)}),
-      "rad",
-      std::nullopt});
-  if (c.gyroscope) {
-    f.notes.push_back(
-        ExportNote{ExportNoteKind::kTermDropped,
-                   "gyroscope_m",
-                   (c.gyroscope->m - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(),
-                   "",
-                   std::nullopt});
-    if (c.gyroscope->g_sensitivity_radps_per_mps2) {
-      f.notes.push_back(
-          ExportNote{ExportNoteKind::kTermDropped,
-                     "g_sensitivity",
-                     c.gyroscope->g_sensitivity_radps_per_mps2->cwiseAbs().maxCoeff(),
-                     "rad/s per m/s^2",
-                     std::nullopt});
-    }
-  }
+  f.notes = AutopilotNotes(c);
   return f;
 }
 

@@ -209,10 +209,67 @@ void ShortestCorrTime(const SensorNoise& s, bool gyro, std::optional<CorrTime>& 
   }
 }
 
+// gsstd and asstd: the scale factors' change over time is not in a still
+// record; the calibration's 1σ of the scale factors when given, else
+// KF-GINS's example value, each said so.
+void AppendScaleLines(std::string& t, ExportedFile& f, const Calibration* calibration) {
+  AxisTriple gs, as;
+  std::string scale_source = "KF-GINS's example value (config/kf-gins.yaml)";
+  for (int i = 0; i < 3; ++i) {
+    gs.v[i] = as.v[i] = 1000.0;
+  }
+  if (calibration && calibration->std) {
+    scale_source = "the calibration's 1 sigma of the scale factor";
+    for (int i = 0; i < 3; ++i) as.v[i] = calibration->std->scale_factor_error[i] * 1e6;
+    if (calibration->gyroscope && calibration->gyroscope->m_covariance) {
+      const Eigen::Matrix3d m_std = calibration->gyroscope->MStd();
+      for (int i = 0; i < 3; ++i) gs.v[i] = m_std(i, i) * 1e6;
+    }
+  }
+  for (const char* key : {"gsstd", "asstd"}) {
+    t += FilterCommentLine(fmt::format(
+        "{} NOT MEASURED: the scale factor's instability is not in a still record; "
+        "written: {}",
+        key,
+        scale_source));
+    const AxisTriple& v = std::string(key) == "gsstd" ? gs : as;
+    f.notes.push_back(ExportNote{ExportNoteKind::kNotMeasured,
+                                 key,
+                                 std::max({v.v[0], v.v[1], v.v[2]}),
+                                 "ppm",
+                                 std::nullopt});
+    AppendTriple(t, f, key, v, "ppm");
+  }
+}
+
+// corrtime: the shortest T of the axes that show both B and K.
+void AppendCorrTime(std::string& t,
+                    ExportedFile& f,
+                    const SensorNoise& g,
+                    const SensorNoise& a) {
+  std::optional<CorrTime> ct;
+  ShortestCorrTime(g, true, ct);
+  ShortestCorrTime(a, false, ct);
+  if (ct) {
+    t += fmt::format("  corrtime: {:.6g}  # [hr], the shortest, from the {} {} axis\n",
+                     ct->seconds / 3600.0,
+                     ct->gyro ? "gyroscope" : "accelerometer",
+                     kFilterAxisNames[ct->axis]);
+  } else {
+    // A bound of B or K would give a bound of T in one direction only: no
+    // value of the record's; KF-GINS's own example value, said so.
+    t += FilterCommentLine(
+        "corrtime NOT MEASURED: no axis shows both B and K; written: KF-GINS's example "
+        "value (config/kf-gins.yaml)");
+    f.notes.push_back(
+        ExportNote{ExportNoteKind::kNotMeasured, "corrtime", 1.0, "h", std::nullopt});
+    t += "  corrtime: 1.0  # [hr]\n";
+  }
+}
+
 ExportedFile WriteKfGins(const ExportSources& s, const ExportOptions&) {
   const NoiseResult& r = s.noise->result;
   const std::string& input = s.noise->input;
-  const Calibration* calibration = s.calibration;
   if (!r.gyro_radps)
     throw Error("KF-GINS's IMU noise needs a gyroscope; the log has none");
   const SensorNoise& a = r.accel_mps2;
@@ -259,52 +316,8 @@ ExportedFile WriteKfGins(const ExportSources& s, const ExportOptions&) {
                "mGal",
                &a,
                NoiseTerm::kBiasInstability);
-  // The scale factors' change over time is not in a still record.
-  AxisTriple gs, as;
-  std::string scale_source = "KF-GINS's example value (config/kf-gins.yaml)";
-  for (int i = 0; i < 3; ++i) {
-    gs.v[i] = as.v[i] = 1000.0;
-  }
-  if (calibration && calibration->std) {
-    scale_source = "the calibration's 1 sigma of the scale factor";
-    for (int i = 0; i < 3; ++i) as.v[i] = calibration->std->scale_factor_error[i] * 1e6;
-    if (calibration->gyroscope && calibration->gyroscope->m_covariance) {
-      const Eigen::Matrix3d m_std = calibration->gyroscope->MStd();
-      for (int i = 0; i < 3; ++i) gs.v[i] = m_std(i, i) * 1e6;
-    }
-  }
-  for (const char* key : {"gsstd", "asstd"}) {
-    t += FilterCommentLine(fmt::format(
-        "{} NOT MEASURED: the scale factor's instability is not in a still record; "
-        "written: {}",
-        key,
-        scale_source));
-    const AxisTriple& v = std::string(key) == "gsstd" ? gs : as;
-    f.notes.push_back(ExportNote{ExportNoteKind::kNotMeasured,
-                                 key,
-                                 std::max({v.v[0], v.v[1], v.v[2]}),
-                                 "ppm",
-                                 std::nullopt});
-    AppendTriple(t, f, key, v, "ppm");
-  }
-  std::optional<CorrTime> ct;
-  ShortestCorrTime(g, true, ct);
-  ShortestCorrTime(a, false, ct);
-  if (ct) {
-    t += fmt::format("  corrtime: {:.6g}  # [hr], the shortest, from the {} {} axis\n",
-                     ct->seconds / 3600.0,
-                     ct->gyro ? "gyroscope" : "accelerometer",
-                     kFilterAxisNames[ct->axis]);
-  } else {
-    // A bound of B or K would give a bound of T in one direction only: no
-    // value of the record's; KF-GINS's own example value, said so.
-    t += FilterCommentLine(
-        "corrtime NOT MEASURED: no axis shows both B and K; written: KF-GINS's example "
-        "value (config/kf-gins.yaml)");
-    f.notes.push_back(
-        ExportNote{ExportNoteKind::kNotMeasured, "corrtime", 1.0, "h", std::nullopt});
-    t += "  corrtime: 1.0  # [hr]\n";
-  }
+  AppendScaleLines(t, f, s.calibration);
+  AppendCorrTime(t, f, g, a);
   return f;
 }
 
