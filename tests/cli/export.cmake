@@ -59,3 +59,24 @@ add_test(NAME cli.export_repeat_imu_tk
   COMMAND sh -c "mkdir -p '${CMAKE_CURRENT_BINARY_DIR}/export_repeat_imu_tk' && cd '${CMAKE_CURRENT_BINARY_DIR}/export_repeat_imu_tk' && exec '${CMAKE_CURRENT_SOURCE_DIR}/export_repeat_imu_tk.sh' \"$0\" '${PROJECT_SOURCE_DIR}'"
           $<TARGET_FILE:mpcal_cli>)
 set_tests_properties(cli.export_repeat_imu_tk PROPERTIES LABELS cli)
+
+# A calibration imported from imu_tk (no 1σ): apply and report say so.
+set(_imported ${MPCAL_TEST_DATA}/export/imu_tk_imported.json)
+mpcal_cli_test(apply_imported_says_no_sigma EXIT 0
+  MATCH "calibration imported from imu_tk \\.calib: no 1σ"
+  ARGS apply ${_imported} ${MPCAL_REAL_DATA}/xsens-multiposition/xsens_acc.mat
+       --columns t=0,ax=1,ay=2,az=3 -o corrected.csv)
+mpcal_cli_test(report_imported_says_no_sigma EXIT 0
+  MATCH "No 1σ: imported from imu_tk \\.calib, which gives none\\."
+  ARGS report --calib ${_imported} -o -)
+mpcal_cli_test(export_rate_overrides_the_noise_files EXIT 0 MATCH "update_rate: 200  # Hz$"
+  ARGS export kalibr-scale-misalignment ${_half1} ${_noise} --rate 200 -o -)
+mpcal_cli_test(export_bad_topic EXIT 1 MATCH "mpcal: error: 'a: b' is not a ROS topic name"
+  ABSENT imu.yaml
+  ARGS export kalibr-scale-misalignment ${_half1} ${_noise} --rostopic "a: b" -o imu.yaml)
+mpcal_cli_test(export_kalibr_noise EXIT 0 MATCH "wrote imu\\.yaml \\(Kalibr imu\\.yaml\\)"
+  ARGS export kalibr ${_noise} -o imu.yaml)
+mpcal_cli_test(export_no_place_for_noise EXIT 1
+  MATCH "mpcal: error: format 'imu-tk-accel' has no place for a noise file \\(mpcal\\.noise/1\\); leave it out"
+  ABSENT acc.calib
+  ARGS export imu-tk-accel ${_half1} ${_noise} -o acc.calib)
