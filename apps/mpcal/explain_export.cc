@@ -53,6 +53,13 @@ std::string DescribeExportNote(const ExportNote& n, const std::string& file) {
                          file,
                          n.quantity,
                          v);
+    case ExportNoteKind::kCommentOnly:
+      return fmt::format(
+          "{}: the format has no key for {} (largest entry {}): written in the file's "
+          "comments only (the tool estimates its own)",
+          file,
+          n.quantity,
+          v);
     case ExportNoteKind::kFrameRotated:
       return fmt::format(
           "{}: {}: the format's frame is not mpcal's; output corrected by this file is "

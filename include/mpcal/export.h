@@ -61,6 +61,10 @@ enum class ExportNoteKind {
   /// A term of mpcal's model the format cannot hold, dropped: `magnitude` is
   /// its size (the largest entry, in `unit`).
   kTermDropped,
+  /// The format has no key for a value mpcal has (the biases, for filters
+  /// that estimate their own): written in the file's comments only;
+  /// `magnitude` its largest entry.
+  kCommentOnly,
   /// The format's frame is not mpcal's: the file implies a rotation of the
   /// corrected output by `magnitude` rad.
   kFrameRotated,

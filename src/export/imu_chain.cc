@@ -54,13 +54,13 @@ Calibration CalibrationOf(const KalibrIntrinsics& k, double gravity_mps2) {
 }
 
 void AddBiasNotes(const KalibrIntrinsics& k, std::vector<ExportNote>* notes) {
-  notes->push_back(ExportNote{ExportNoteKind::kTermDropped,
-                              "the accelerometer's bias (in a comment)",
+  notes->push_back(ExportNote{ExportNoteKind::kCommentOnly,
+                              "the accelerometer's bias",
                               k.accel_bias_mps2.cwiseAbs().maxCoeff(),
                               "m/s^2",
                               {}});
-  notes->push_back(ExportNote{ExportNoteKind::kTermDropped,
-                              "the gyroscope's bias (in a comment)",
+  notes->push_back(ExportNote{ExportNoteKind::kCommentOnly,
+                              "the gyroscope's bias",
                               k.gyro_bias_radps.cwiseAbs().maxCoeff(),
                               "rad/s",
                               {}});
