@@ -46,4 +46,4 @@ set_tests_properties(cli.import_ardupilot_round_trip PROPERTIES LABELS cli
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 mpcal_cli_test(import_px4_camera_chain EXIT 1
   MATCH "mpcal: error: .*line 1: not a QGroundControl parameter line" ABSENT c.json
-  ARGS import px4 ${MPCAL_TEST_DATA}/kalibr_camchain.yaml -o c.json)
+  ARGS import px4 ${MPCAL_TEST_DATA}/export/kalibr_camchain.yaml -o c.json)
