@@ -1,5 +1,6 @@
 // libFuzzer target for the readers of other tools' calibration files
-// (mpcal import): imu_tk's .calib, Kalibr's and OpenVINS's IMU YAML.
+// (mpcal import): imu_tk's .calib, Kalibr's and OpenVINS's IMU YAML, PX4's and
+// ArduPilot's parameter files.
 //
 // The input is the file's text, given to every format that reads. Any
 // outcome but a calibration or mpcal::Error is a finding: another
