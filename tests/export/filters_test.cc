@@ -14,6 +14,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include "export/filter_formats.h"
 #include "mpcal/calibration_file.h"
@@ -210,6 +211,13 @@ TEST(FilterNoise, KfGinsPropagatesEachAxissScatter) {
                 0.35)
         << i;
   }
+  // KF-GINS reads the block with yaml-cpp (kf_gins.cpp loadConfig): every
+  // key a vector of three, corrtime a number.
+  const YAML::Node config = YAML::Load(f.text);
+  for (const char* key : {"arw", "vrw", "gbstd", "abstd", "gsstd", "asstd"}) {
+    EXPECT_EQ(config["imunoise"][key].as<std::vector<double>>().size(), 3U) << key;
+  }
+  EXPECT_GT(config["imunoise"]["corrtime"].as<double>(), 0.0);
   // Three minutes show no random walk: the correlation time rests on a bound.
   EXPECT_THAT(f.text, HasSubstr("# corrtime NOT MEASURED: no axis shows both B and K"));
   EXPECT_THAT(f.text, HasSubstr("# gsstd NOT MEASURED"));
