@@ -320,7 +320,12 @@ void RunApply(const CLI::App& cmd, const ApplyFlags& flags) {
   }
   // Standard output may be the corrected log itself: the summary goes there
   // only when the log went to a file.
-  if (flags.output != "-") PrintSummary(flags, calibration, result);
+  if (flags.output != "-") {
+    PrintSummary(flags, calibration, result);
+    if (calibration.imported_from) {
+      fmt::print("calibration imported from {}: no 1σ\n", *calibration.imported_from);
+    }
+  }
 }
 
 }  // namespace

@@ -101,7 +101,7 @@ std::string FormatParameterTable(const Calibration& calibration,
     out += fmt::format("{:<22} {:>12.3f} {:>10}",
                        r.label,
                        value[i] * r.per_si,
-                       sigma ? fmt::format("{:.3f}", (*sigma)[i] * r.per_si) : "-");
+                       sigma ? fmt::format("{:.3f}", (*sigma)[i] * r.per_si) : "no 1σ");
     for (const auto& column : extra) {
       out += fmt::format(" {:>12.3f}", column.values_si[i] * r.per_si);
     }

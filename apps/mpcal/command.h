@@ -27,5 +27,7 @@ void AddReportCommand(CLI::App& root);
 void AddDemoCommand(CLI::App& root);
 void AddNoiseCommand(CLI::App& root);
 void AddInspectCommand(CLI::App& root);
+void AddExportCommand(CLI::App& root);
+void AddImportCommand(CLI::App& root);
 
 }  // namespace mpcal::cli

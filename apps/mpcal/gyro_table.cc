@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <utility>
 
 #include <fmt/format.h>
@@ -24,7 +25,7 @@ std::string Row(const std::string& label,
   std::string out = fmt::format("{:<22} {:>12.3f} {:>10}",
                                 label,
                                 value,
-                                sigma ? fmt::format("{:.3f}", *sigma) : "-");
+                                sigma ? fmt::format("{:.3f}", *sigma) : "no 1σ");
   if (extra) out += fmt::format(" {:>12.3f}", *extra);
   return out + fmt::format("  {}\n", unit);
 }
@@ -202,7 +203,7 @@ struct RepeatRow {
   std::string label;
   std::string unit;
   std::vector<double> values;
-  std::vector<double> sigmas;  // empty: a trial without 1σ
+  std::vector<std::optional<double>> sigmas;  // nullopt: a trial without 1σ
 };
 
 // Each trial's nominal scale over the first's. A calibration of raw counts
@@ -236,7 +237,9 @@ std::vector<RepeatRow> GyroRepeatRows(const std::vector<const GyroCalibration*>&
     for (std::size_t i = 0; i < g.size(); ++i) {
       const GyroCalibration& t = *g[i];
       row.values.push_back((t.m(r, c) * ratios[i] - (r == c ? 1.0 : 0.0)) * factor);
-      if (t.m_covariance) row.sigmas.push_back(t.MStd()(r, c) * ratios[i] * factor);
+      row.sigmas.push_back(t.m_covariance
+                               ? std::optional(t.MStd()(r, c) * ratios[i] * factor)
+                               : std::nullopt);
     }
     rows.push_back(row);
   }
@@ -245,9 +248,9 @@ std::vector<RepeatRow> GyroRepeatRows(const std::vector<const GyroCalibration*>&
     for (std::size_t j = 0; j < g.size(); ++j) {
       const GyroCalibration& t = *g[j];
       row.values.push_back(t.bias_radps[i] / ratios[j] * kDegPerRad);
-      if (t.bias_std_radps) {
-        row.sigmas.push_back((*t.bias_std_radps)[i] / ratios[j] * kDegPerRad);
-      }
+      row.sigmas.push_back(t.bias_std_radps ? std::optional((*t.bias_std_radps)[i] /
+                                                            ratios[j] * kDegPerRad)
+                                            : std::nullopt);
     }
     rows.push_back(row);
   }
@@ -255,27 +258,52 @@ std::vector<RepeatRow> GyroRepeatRows(const std::vector<const GyroCalibration*>&
 }
 
 // Sample std, and the chi-square p-value of the trials against their
-// weighted mean (negative when a trial has no 1σ).
-std::pair<double, double> Spread(const RepeatRow& row) {
+// weighted mean (negative when a trial has no 1σ). With exactly one trial
+// without 1σ (a calibration from another tool), the others are compared with
+// it in units of their own 1σ, as repeat does for the accelerometer.
+struct GyroSpread {
+  double sample_std = 0.0;
+  double p = -1.0;
+  std::optional<double> z;  // two trials, one without 1σ: the other's z
+};
+GyroSpread Spread(const RepeatRow& row) {
   const auto n = static_cast<double>(row.values.size());
   double mean = 0.0;
   for (double v : row.values) mean += v / n;
   double ss = 0.0;
   for (double v : row.values) ss += (v - mean) * (v - mean);
   const double sample_std = std::sqrt(ss / (n - 1.0));
-  if (row.sigmas.size() != row.values.size()) return {sample_std, -1.0};
+  const auto without = static_cast<std::size_t>(
+      std::count(row.sigmas.begin(), row.sigmas.end(), std::nullopt));
+  if (without > 1) return {sample_std, -1.0, std::nullopt};
+  if (without == 1) {
+    const std::size_t ref = static_cast<std::size_t>(
+        std::find(row.sigmas.begin(), row.sigmas.end(), std::nullopt) -
+        row.sigmas.begin());
+    double chi2 = 0.0;
+    std::optional<double> z;
+    for (std::size_t i = 0; i < row.values.size(); ++i) {
+      if (i == ref) continue;
+      const double zi = (row.values[i] - row.values[ref]) / *row.sigmas[i];
+      chi2 += zi * zi;
+      if (row.values.size() == 2) z = zi;
+    }
+    return {sample_std, ChiSquareUpperTail(chi2, static_cast<int>(n) - 1), z};
+  }
   double w_sum = 0.0;
   double wx = 0.0;
   for (std::size_t i = 0; i < row.values.size(); ++i) {
-    const double w = 1.0 / (row.sigmas[i] * row.sigmas[i]);
+    const double w = 1.0 / (*row.sigmas[i] * *row.sigmas[i]);
     w_sum += w;
     wx += w * row.values[i];
   }
   double chi2 = 0.0;
   for (std::size_t i = 0; i < row.values.size(); ++i) {
-    chi2 += std::pow((row.values[i] - wx / w_sum) / row.sigmas[i], 2);
+    chi2 += std::pow((row.values[i] - wx / w_sum) / *row.sigmas[i], 2);
   }
-  return {sample_std, ChiSquareUpperTail(chi2, static_cast<int>(row.values.size()) - 1)};
+  return {sample_std,
+          ChiSquareUpperTail(chi2, static_cast<int>(row.values.size()) - 1),
+          std::nullopt};
 }
 
 }  // namespace
@@ -304,29 +332,39 @@ std::string FormatGyroRepeatTable(std::span<const Calibration> trials,
     out += fmt::format(" {:>18}", fmt::format("trial {}", i + 1));
   out += fmt::format(" {:>10} {:>10}  {}\n", "mean", "std", "between trials");
   std::vector<std::string> changed;
+  bool any_without = false;
   for (const RepeatRow& row : GyroRepeatRows(g, ratios)) {
     out += fmt::format("{:<22} {:<6}", row.label, row.unit);
     for (std::size_t i = 0; i < row.values.size(); ++i) {
       out +=
-          row.sigmas.size() == row.values.size()
+          row.sigmas[i]
               ? fmt::format(" {:>18}",
-                            fmt::format("{:.3f} ± {:.3f}", row.values[i], row.sigmas[i]))
-              : fmt::format(" {:>18.3f}", row.values[i]);
+                            fmt::format("{:.3f} ± {:.3f}", row.values[i], *row.sigmas[i]))
+              : fmt::format(" {:>18}", fmt::format("{:.3f} no 1σ", row.values[i]));
     }
     double mean = 0.0;
     for (double v : row.values) mean += v / static_cast<double>(row.values.size());
-    const auto [sample_std, p] = Spread(row);
+    const GyroSpread spread = Spread(row);
+    const double p = spread.p;
     const bool differs = p >= 0.0 && p < 0.01;
     if (differs) changed.push_back(row.label);
+    if (p < 0.0) any_without = true;
     out += fmt::format(
         " {:>10.3f} {:>10.3f}  {}\n",
         mean,
-        sample_std,
+        spread.sample_std,
         p < 0.0 ? std::string("no 1σ")
-                : fmt::format("{} (p = {:.2g})", differs ? "changed" : "consistent", p));
+                : fmt::format("{}{} (p = {:.2g})",
+                              differs ? "changed" : "consistent",
+                              spread.z ? fmt::format(" z={:+.2f}", *spread.z) : "",
+                              p));
   }
   for (std::size_t i = 0; i < used.size(); ++i)
     out += fmt::format("trial {}: {}\n", i + 1, used[i]);
+  if (any_without) {
+    out += "gyroscope: no verdict: more than one trial carries no 1σ.\n";
+    return out;
+  }
   out += changed.empty()
              ? "gyroscope: every entry consistent between the trials within their 1σ "
                "(chi-square, 1 % significance).\n"

@@ -138,6 +138,8 @@ int Run(int argc, char** argv) {
   mpcal::cli::AddDemoCommand(app);
   mpcal::cli::AddNoiseCommand(app);
   mpcal::cli::AddInspectCommand(app);
+  mpcal::cli::AddExportCommand(app);
+  mpcal::cli::AddImportCommand(app);
 
   // Bare `mpcal`: the help, then the error; an unknown word: say so. (CLI11
   // says "A subcommand is required" to both.)

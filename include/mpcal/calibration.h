@@ -182,6 +182,10 @@ struct Calibration {
   /// parameters, excluded positions, ...).
   std::vector<std::string> warnings;
   std::optional<Provenance> provenance;
+  /// The other tool's file this calibration was read from ("imu_tk .calib")
+  /// by an import; such a calibration has no 1σ (`std` and the gyroscope's
+  /// bias_std_radps and m_covariance are nullopt), and no fit or positions.
+  std::optional<std::string> imported_from;
   /// The gyroscope of the same IMU, when the log had one (an IMU file,
   /// format mpcal.imu/1); nullopt for an accelerometer-only calibration.
   std::optional<GyroCalibration> gyroscope;

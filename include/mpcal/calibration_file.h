@@ -25,6 +25,12 @@ std::string CalibrationToJson(const Calibration& calibration);
 ///   non-finite value.
 Calibration CalibrationFromJson(const std::string& text, const std::string& origin);
 
+/// The `"format"` tag of an mpcal JSON file's text ("mpcal.imu/1",
+/// "mpcal.noise/1", ...), so that a command taking either kind of file can
+/// tell them apart; empty when the text is not a JSON object with a string
+/// "format".
+std::string JsonFormatTag(const std::string& text);
+
 /// Reads and parses a calibration file.
 /// \throws mpcal::Error as CalibrationFromJson, or when unreadable.
 Calibration ReadCalibrationFile(const std::string& path);

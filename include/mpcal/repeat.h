@@ -57,8 +57,16 @@ struct RepeatabilityOptions {
 struct ParameterRepeatability {
   /// The value of each trial, in trial order (SI).
   std::vector<double> values;
-  /// Each trial's 1σ (SI); empty when any trial carries none.
+  /// Each trial's 1σ (SI); empty when there is no verdict. 0 for the
+  /// reference trial (below).
   std::vector<double> trial_std;
+  /// When exactly one trial carries no 1σ (a calibration imported from
+  /// another tool) and every other does: that trial, the one the others are
+  /// compared with, and each trial's difference from it in units of the
+  /// trial's own 1σ, (value − reference)/1σ (0 for the reference). The
+  /// verdict's χ² is then the sum of their squares, n−1 degrees of freedom.
+  std::optional<std::size_t> reference_trial;
+  std::vector<double> z_from_reference;
   double mean = 0.0;
   /// √(Σ(x−mean)²/n): the paper's "desvio padrão".
   double std_population = 0.0;

@@ -412,6 +412,13 @@ std::string CalibrationToJson(const Calibration& c) {
   j["positions"] = PositionsJson(c.positions);
   j["warnings"] = c.warnings;
   if (c.gyroscope) j["gyroscope"] = internal::GyroToJson(*c.gyroscope);
+  if (c.imported_from) {
+    if (c.std) {
+      throw Error(ErrorKind::kInput,
+                  "an imported calibration has no 1σ, but this one has 'std'");
+    }
+    j["imported_from"] = *c.imported_from;
+  }
   if (c.provenance) {
     j["provenance"] = {{"mpcal_version", c.provenance->mpcal_version},
                        {"input", c.provenance->input},
@@ -473,7 +480,22 @@ Calibration CalibrationFromJson(const std::string& text, const std::string& orig
     c.provenance = prov;
   }
   if (imu) c.gyroscope = internal::GyroFromJson(r, r.Field(j, "", "gyroscope"));
+  if (j.contains("imported_from")) {
+    c.imported_from = r.String(j, "", "imported_from");
+    if (c.std ||
+        (c.gyroscope && (c.gyroscope->bias_std_radps || c.gyroscope->m_covariance))) {
+      r.Fail(
+          "'imported_from' says the calibration was read from another tool's file, "
+          "which gives no 1σ, but the file has a 1σ ('std')");
+    }
+  }
   return c;
+}
+
+std::string JsonFormatTag(const std::string& text) {
+  const json j = json::parse(text, nullptr, false);
+  if (!j.is_object() || !j.contains("format") || !j["format"].is_string()) return "";
+  return j["format"].get<std::string>();
 }
 
 Calibration ReadCalibrationFile(const std::string& path) {

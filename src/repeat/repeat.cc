@@ -40,12 +40,20 @@ std::string NoVerdictReason(int p,
   if (p >= ParameterCount(model)) {
     return fmt::format("not estimated by the model {}", ToString(model));
   }
+  // One trial without 1σ is the reference the others are compared with;
+  // two or more leave nothing to compare in units of a 1σ.
+  std::size_t without = 0;
+  std::size_t first_without = 0;
   for (std::size_t i = 0; i < trials.stds.size(); ++i) {
-    if (!trials.stds[i]) {
-      return fmt::format("no uncertainty given ({} carries no 1σ)", TrialLabel(names, i));
-    }
+    if (trials.stds[i]) continue;
+    if (without++ == 0) first_without = i;
+  }
+  if (without > 1) {
+    return fmt::format("no uncertainty given ({} carries no 1σ)",
+                       TrialLabel(names, first_without));
   }
   for (std::size_t i = 0; i < trials.stds.size(); ++i) {
+    if (!trials.stds[i]) continue;
     if (!((*trials.stds[i])[p] > 0.0)) {
       return fmt::format("no uncertainty given ({}'s 1σ of {} is zero)",
                          TrialLabel(names, i),
@@ -118,7 +126,7 @@ RepeatabilityResult AnalyzeRepeatability(std::span<const Calibration> trials,
     internal::SetSpread(values, out);
     out.no_verdict_reason = NoVerdictReason(p, first.model_kind, common, names);
     if (!out.no_verdict_reason.empty()) continue;
-    for (const auto& s : common.stds) out.trial_std.push_back((*s)[p]);
+    for (const auto& s : common.stds) out.trial_std.push_back(s ? (*s)[p] : 0.0);
     internal::SetVerdict(options.significance, out);
   }
   return result;

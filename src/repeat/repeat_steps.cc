@@ -148,7 +148,12 @@ TrialValues CommonFactorValues(std::span<const Calibration> trials,
     if (!stds[i]) without_std.push_back(TrialLabel(names, i));
   }
   // When none carries a 1σ, every row's no_verdict_reason already says so.
-  if (!without_std.empty() && without_std.size() < n) {
+  if (without_std.size() == 1 && n > 1) {
+    notes.push_back(fmt::format(
+        "{} carries no 1σ (a calibration from another tool): every other trial is "
+        "compared with it in units of its own 1σ (z in the last column with two trials)",
+        without_std.front()));
+  } else if (!without_std.empty() && without_std.size() < n) {
     notes.push_back(
         fmt::format("{} {} no 1σ: no verdict on whether the spread exceeds the noise",
                     fmt::join(without_std, ", "),
@@ -172,8 +177,34 @@ void SetSpread(const std::vector<double>& values, ParameterRepeatability& out) {
   out.std_sample = std::sqrt(squares / (n - 1.0));
 }
 
+// The verdict against the one trial without 1σ: each other trial's
+// difference from it over its own 1σ.
+void SetVerdictAgainstReference(double significance,
+                                std::size_t reference,
+                                ParameterRepeatability& out) {
+  const std::size_t n = out.values.size();
+  out.reference_trial = reference;
+  out.z_from_reference.assign(n, 0.0);
+  double chi2 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i == reference) continue;
+    const double z = (out.values[i] - out.values[reference]) / out.trial_std[i];
+    out.z_from_reference[i] = z;
+    chi2 += z * z;
+  }
+  out.chi2 = chi2;
+  out.p_value = ChiSquareUpperTail(chi2, static_cast<int>(n) - 1);
+  out.changed = *out.p_value < significance;
+}
+
 void SetVerdict(double significance, ParameterRepeatability& out) {
   const std::size_t n = out.values.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (out.trial_std[i] == 0.0) {
+      SetVerdictAgainstReference(significance, i, out);
+      return;
+    }
+  }
   double weight_sum = 0.0;
   double weighted = 0.0;
   for (std::size_t i = 0; i < n; ++i) {

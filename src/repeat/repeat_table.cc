@@ -1,4 +1,5 @@
 // The repeatability table in the paper's units and the verdict in words.
+#include <algorithm>
 #include <cmath>
 #include <string_view>
 #include <vector>
@@ -47,7 +48,12 @@ std::string VerdictCell(const ParameterRepeatability& p) {
   const std::string pv = !p.p_value           ? std::string()
                          : *p.p_value < 1e-15 ? std::string(" (p<1e-15)")
                                               : fmt::format(" (p={:.2g})", *p.p_value);
-  return (*p.changed ? "CHANGED" : "no change") + pv;
+  // Two trials, one without 1σ: the other's difference in units of its 1σ.
+  std::string z;
+  if (p.reference_trial && p.values.size() == 2) {
+    z = fmt::format(" z={:+.2f}", p.z_from_reference[1 - *p.reference_trial]);
+  }
+  return (*p.changed ? "CHANGED" : "no change") + z + pv;
 }
 
 // "bias x, y, z" / "scale-factor error y" / "non-orthogonality yz, zy": the
@@ -115,13 +121,16 @@ std::string FormatRepeatabilityTable(const RepeatabilityResult& result) {
       out += fmt::format(" {:>{}.{}f}", v * style.per_si, kValueWidth, style.decimals);
     }
     // The trials' own 1σ as one figure: the RMS over trials.
-    std::string sigma = "-";
+    std::string sigma = "no 1σ";
     if (!row.trial_std.empty()) {
+      // Over the trials that carry one (the reference trial's is 0).
       double sum = 0.0;
-      for (double s : row.trial_std) sum += s * s;
-      sigma = fmt::format(
-          "{:.4g}",
-          std::sqrt(sum / static_cast<double>(row.trial_std.size())) * style.per_si);
+      int with = 0;
+      for (double s : row.trial_std) {
+        sum += s * s;
+        with += s > 0.0 ? 1 : 0;
+      }
+      sigma = fmt::format("{:.4g}", std::sqrt(sum / std::max(with, 1)) * style.per_si);
     }
     out += fmt::format(" {:>{}.{}f} {:>{}.4g} {:>{}.4g} {:>{}}  {}\n",
                        row.mean * style.per_si,

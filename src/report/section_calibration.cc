@@ -221,7 +221,10 @@ std::string CalibrationSection(const Calibration& c) {
       c.std
           ? "Estimates \u00b1 1\u03c3 (covariance scaled by the variance factor). The "
             "corrected specific force is a = T \u00b7 diag(1/(1+s)) \u00b7 (Y \u2212 b)."
-          : "Values without uncertainty (a truth or hand-made file).",
+      : c.imported_from
+          ? "No 1\u03c3: imported from " + *c.imported_from + ", which gives none."
+          : std::string(
+                "Values without uncertainty, no 1\u03c3 (a truth or hand-made file)."),
       "note");
   html += ParameterTable(c);
   if (c.fit) {

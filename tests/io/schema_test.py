@@ -211,6 +211,15 @@ def written_files(schemas, mpcal, root, work):
           str(xsens / "xsens_gyro.mat"), "--units", "counts", "--gyro-units",
           "counts", "--gravity", "9.81744", "-o", "xsens_imu.json"],
          [("xsens_imu.json", imu, ["gyroscope/fit", "gyroscope/position_bias"])]),
+        # Calibrations imported from another tool (no 1σ): imu_tk's own
+        # calibration of the Xsens recording, and an accelerometer alone.
+        (["import", "imu-tk", str(xsens / "imu_tk" / "xsens_acc.calib"),
+          str(xsens / "imu_tk" / "xsens_gyro.calib"), "--units", "counts",
+          "--gyro-units", "counts", "--gravity", "9.81744", "-o", "imported_imu.json"],
+         [("imported_imu.json", imu, ["imported_from"])]),
+        (["import", "imu-tk", str(xsens / "imu_tk" / "xsens_acc.calib"), "--units",
+          "counts", "-o", "imported_acc.json"],
+         [("imported_acc.json", acc, ["imported_from"])]),
         # Detection: positions found, with turns, and none found (exit 1,
         # the file is still written).
         (["detect", "mps2.csv", "--json", "detect.json"],

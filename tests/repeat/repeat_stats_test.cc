@@ -1,6 +1,7 @@
 // Repeatability statistics on calibrations built by hand: the deviations, the
 // chi-square verdict, and the refusal of trials that do not compare.
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -176,7 +177,9 @@ TEST(Repeatability, SignificanceLevelMovesTheVerdict) {
 }
 
 TEST(Repeatability, NoSigmaGivesNoVerdictRatherThanAGuess) {
+  // Two trials without 1σ: nothing to measure the differences by.
   std::vector<Calibration> trials = BiasMovedInTrial2();
+  trials[1].std.reset();
   trials[2].std.reset();
   const std::vector<std::string> names = {"a.json", "b.json", "c.json"};
   const RepeatabilityResult r = AnalyzeRepeatability(trials, names);
@@ -184,14 +187,44 @@ TEST(Repeatability, NoSigmaGivesNoVerdictRatherThanAGuess) {
     EXPECT_FALSE(row.changed.has_value());
     EXPECT_FALSE(row.chi2.has_value());
     EXPECT_THAT(row.no_verdict_reason,
-                AllOf(HasSubstr("no uncertainty given"), HasSubstr("trial 3 (c.json)")));
+                AllOf(HasSubstr("no uncertainty given"), HasSubstr("trial 2 (b.json)")));
   }
   // The statistics are there all the same.
   EXPECT_GT(r.parameters[0].std_population, 10 * kBiasStd);
   EXPECT_THAT(RepeatabilityVerdict(r), HasSubstr("no uncertainty given"));
   EXPECT_THAT(RepeatabilityVerdict(r), ::testing::Not(HasSubstr("changed between")));
   ASSERT_FALSE(r.notes.empty());
-  EXPECT_THAT(r.notes[0], HasSubstr("trial 3 (c.json) carries no 1σ"));
+  EXPECT_THAT(r.notes[0], HasSubstr("trial 2 (b.json), trial 3 (c.json) carry no 1σ"));
+}
+
+TEST(Repeatability, OneTrialWithoutSigmaIsTheReferenceOfTheOthers) {
+  // An imported calibration (no 1σ) against mpcal's: each other trial's
+  // difference from it in units of that trial's own 1σ.
+  std::vector<Calibration> trials = BiasMovedInTrial2();
+  trials[0].std.reset();
+  const std::vector<std::string> names = {"imported.json", "b.json", "c.json"};
+  const RepeatabilityResult r = AnalyzeRepeatability(trials, names);
+  for (int p = 0; p < kNumModelParameters; ++p) {
+    const ParameterRepeatability& row = r.parameters[static_cast<std::size_t>(p)];
+    ASSERT_TRUE(row.changed.has_value()) << p;
+    ASSERT_EQ(row.reference_trial, std::optional<std::size_t>(0));
+    double chi2 = 0.0;
+    for (std::size_t i = 1; i < 3; ++i) {
+      const double sigma = ToVector(*trials[i].std)[p];
+      const double z =
+          (ToVector(trials[i].model)[p] - ToVector(trials[0].model)[p]) / sigma;
+      EXPECT_NEAR(row.z_from_reference[i], z, 1e-9 * (1.0 + std::abs(z))) << p;
+      chi2 += z * z;
+    }
+    EXPECT_NEAR(*row.chi2, chi2, 1e-9 * (1.0 + chi2)) << p;
+    EXPECT_EQ(row.z_from_reference[0], 0.0);
+  }
+  // Trial 2's bias moved by many 1σ: changed; its scale did not.
+  EXPECT_TRUE(*r.parameters[0].changed);
+  EXPECT_FALSE(*r.parameters[3].changed);
+  ASSERT_FALSE(r.notes.empty());
+  EXPECT_THAT(r.notes.back(), HasSubstr("trial 1 (imported.json) carries no 1σ"));
+  EXPECT_THAT(r.notes.back(), HasSubstr("compared with it in units of its own 1σ"));
 }
 
 TEST(Repeatability, ZeroSigmaGivesNoVerdict) {
