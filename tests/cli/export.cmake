@@ -83,3 +83,7 @@ mpcal_cli_test(export_no_place_for_noise EXIT 1
 mpcal_cli_test(import_table_says_no_sigma EXIT 0
   MATCH "non-orthogonality zx +-21\\.30[0-9] +no 1σ +mrad"
   ARGS import imu-tk ${_imu_tk}/xsens_acc.calib --units counts --gravity 9.81744 -o acc.json)
+mpcal_cli_test(import_counts_read_as_mps2 EXIT 1
+  MATCH "mpcal: error: .*is beyond any accelerometer's bias .*; are the tool's raw readings in mps2\\?; give --units counts"
+  ABSENT acc.json
+  ARGS import imu-tk ${_imu_tk}/xsens_acc.calib -o acc.json)
