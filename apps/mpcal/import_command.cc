@@ -13,6 +13,7 @@
 #include "cli_options.h"
 #include "command.h"
 #include "explain_export.h"
+#include "gyro_table.h"
 #include "mpcal/atomic_file.h"
 #include "mpcal/calibration_file.h"
 #include "mpcal/error.h"
@@ -61,11 +62,15 @@ void RunImport(const ImportFlags& f) {
     warnings.push_back(DescribeExportNote(note, f.files.front()));
   }
   PrintWarnings(warnings);
-  if (f.output != "-") {
-    fmt::print("wrote {} (from {}; no 1σ: the file does not give one)\n",
-               f.output,
-               format->file);
+  if (f.output == "-") return;
+  // The calibration as mpcal reads it, in mpcal's frame and units.
+  fmt::print("{}", FormatParameterTable(imported.calibration));
+  if (imported.calibration.gyroscope) {
+    fmt::print("\n{}",
+               FormatGyroTable(*imported.calibration.gyroscope, nullptr, "", false));
   }
+  fmt::print(
+      "wrote {} (from {}; no 1σ: the file does not give one)\n", f.output, format->file);
 }
 
 }  // namespace

@@ -82,11 +82,13 @@ ImuTkTriad ParseImuTk(const ImportFile& f) {
   }
   ImuTkTriad t;
   Eigen::Matrix3d k;
-  for (int i = 0; i < 9; ++i) {
-    t.t(i / 3, i % 3) = v[static_cast<std::size_t>(i)];
-    k(i / 3, i % 3) = v[static_cast<std::size_t>(9 + i)];
+  for (std::size_t i = 0; i < 9; ++i) {
+    const auto r = static_cast<int>(i / 3);
+    const auto c = static_cast<int>(i % 3);
+    t.t(r, c) = v[i];
+    k(r, c) = v[9 + i];
   }
-  for (int i = 0; i < 3; ++i) t.b[i] = v[static_cast<std::size_t>(18 + i)];
+  for (std::size_t i = 0; i < 3; ++i) t.b[static_cast<int>(i)] = v[18 + i];
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       if (i != j && k(i, j) != 0.0) {
@@ -159,8 +161,8 @@ ExportedFile WriteImuTkAccel(const ExportSources& s, const ExportOptions&) {
        fmt::format("X' = T*K*(X - B): X raw ({}), X' in m/s^2 (gravity {} m/s^2)",
                    ToString(c.input_units),
                    c.gravity_mps2),
-       "T is upper unit-triangular: the frame keeps the sensor's z axis (mpcal's keeps "
-       "x).",
+       std::string("T is upper unit-triangular: the frame keeps the sensor's z axis "
+                   "(mpcal's keeps x)."),
        fmt::format(
            "X' = R^T a, a mpcal's corrected output; R (rotation by {:.6g} rad) = ",
            angle),

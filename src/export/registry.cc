@@ -7,6 +7,7 @@
 
 #include "export/filter_formats.h"
 #include "export/formats.h"
+#include "mpcal/advice.h"
 #include "mpcal/calibration_file.h"
 #include "mpcal/error.h"
 #include "mpcal/export.h"
@@ -109,8 +110,20 @@ ImportedCalibration Import(const ExportFormat& format,
   ImportedCalibration imported = format.read(files, options);
   // What a calibration file's reader would refuse is refused here, with the
   // same words: the calibration passes through the file's text and back.
-  imported.calibration =
-      CalibrationFromJson(CalibrationToJson(imported.calibration), files.front().path);
+  try {
+    imported.calibration =
+        CalibrationFromJson(CalibrationToJson(imported.calibration), files.front().path);
+  } catch (const Error& e) {
+    // Parameters for raw counts read as m/s² (or the reverse) are the
+    // likeliest cause: the units of the tool's raw readings.
+    Advice advice;
+    advice.settings = {Setting{Option::kLogUnits, "counts"}};
+    throw Error(ErrorKind::kUnits,
+                fmt::format("{}; are the tool's raw readings in {}?",
+                            e.what(),
+                            ToString(options.accel_units)),
+                advice);
+  }
   return imported;
 }
 

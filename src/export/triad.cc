@@ -87,8 +87,7 @@ void CheckInvertible(const Eigen::Matrix3d& m, const std::string& where) {
     throw Error(ErrorKind::kInput,
                 fmt::format("{}: not a matrix of finite numbers", where));
   }
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(m);
-  const Eigen::Vector3d s = svd.singularValues();
+  const Eigen::Vector3d s = Eigen::JacobiSVD<Eigen::Matrix3d>(m).singularValues();
   if (!(s[2] > 0.0) || s[0] / s[2] > 1e8) {
     throw Error(ErrorKind::kInput,
                 fmt::format("{}: the matrix is singular (singular values {:.4g}, {:.4g}, "

@@ -80,3 +80,10 @@ mpcal_cli_test(export_no_place_for_noise EXIT 1
   MATCH "mpcal: error: format 'imu-tk-accel' has no place for a noise file \\(mpcal\\.noise/1\\); leave it out"
   ABSENT acc.calib
   ARGS export imu-tk-accel ${_half1} ${_noise} -o acc.calib)
+mpcal_cli_test(import_table_says_no_sigma EXIT 0
+  MATCH "non-orthogonality zx +-21\\.30[0-9] +no 1σ +mrad"
+  ARGS import imu-tk ${_imu_tk}/xsens_acc.calib --units counts --gravity 9.81744 -o acc.json)
+mpcal_cli_test(import_counts_read_as_mps2 EXIT 1
+  MATCH "mpcal: error: .*is beyond any accelerometer's bias .*; are the tool's raw readings in mps2\\?; give --units counts"
+  ABSENT acc.json
+  ARGS import imu-tk ${_imu_tk}/xsens_acc.calib -o acc.json)
