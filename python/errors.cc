@@ -80,7 +80,8 @@ py::dict Figures(const Error& e) {
     figures["units"] = std::string(ToString(f.units));
     figures["median_magnitude"] = f.median_magnitude;
     figures["gravity_mps2"] = f.gravity_mps2;
-    static constexpr const char* kGuess[] = {"unknown", "g", "mps2", "counts"};
+    static constexpr const char* kGuess[] = {
+        "unknown", "g", "mps2", "counts", "gravity_removed"};
     figures["looks_like"] = kGuess[static_cast<int>(f.guess)];
   }
   if (const auto* session = dynamic_cast<const SessionError*>(&e)) {
@@ -112,6 +113,12 @@ std::string_view KeywordOf(Option option) {
       return "gyro_units";
     case Option::kLogTopic:
       return "topic";
+    case Option::kLogRecordingTime:
+      return "time";
+    case Option::kAccelTopic:
+      return "topic";
+    case Option::kGyroTopic:
+      return "";  // read_log takes one topic: two-topic bags are the command's
     case Option::kGyroLog:
       return "gyro_log";
     case Option::kGyroLogColumns:

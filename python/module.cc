@@ -53,6 +53,16 @@ LogOptions LogOptionsFrom(const py::dict& o) {
   }
   log.time_unit = *time_unit;
   log.rate_hz = Get<double>(o, "rate_hz");
+  const auto time = Get<std::string>(o, "time");
+  if (time != ToString(RecordingTime::kHeader) && time != ToString(RecordingTime::kReceive)) {
+    throw Error(ErrorKind::kOption,
+                fmt::format("time='{}': give 'header' (the messages' stamps) or "
+                            "'receive' (when the recorder received them)",
+                            time),
+                Suggest(Option::kLogRecordingTime, "header"));
+  }
+  log.recording_time = time == ToString(RecordingTime::kReceive) ? RecordingTime::kReceive
+                                                                 : RecordingTime::kHeader;
   if (const std::string bad = log.Validate(); !bad.empty()) {
     throw Error(ErrorKind::kOption, "read_log: " + bad);
   }
@@ -68,6 +78,7 @@ py::dict ReadLogDefaults() {
   d["gyro_units"] = std::string(ToString(log.gyro_units()));
   d["time_unit"] = std::string(ToString(log.time_unit));
   d["rate_hz"] = log.rate_hz;
+  d["time"] = std::string(ToString(log.recording_time));
   d["gyro_log"] = "";
   d["gyro_columns"] = "";
   return d;

@@ -134,6 +134,9 @@ def read_log(path, **options):
     topic : str
         The sensor_msgs/Imu topic of a bag or MCAP file (default: its only
         one).
+    time : str
+        A bag's time: "header" (default: each message's header stamp) or
+        "receive" (when the recorder received it).
     gyro_log, gyro_columns : str
         The gyroscope in a file of its own, row by row with the log
         (imu_tk's xsens_gyro.mat), and its column mapping.
