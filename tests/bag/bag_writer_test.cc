@@ -216,22 +216,24 @@ TEST(RewriteImuMessages, Ros1NeedsAStreamThatSeeks) {
 // back whole, every message edited.
 TEST(RewriteImuMessages, FuzzSeedsRewrittenReadBackOrAreRefused) {
   ScratchDir dir;
-  const std::filesystem::path seeds =
-      std::filesystem::path(MPCAL_TEST_DATA_DIR) / ".." / "fuzz" / "bag_reader";
   int rewritten = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(seeds)) {
-    SCOPED_TRACE(entry.path().string());
-    std::vector<std::string> w_write, w_read;
-    BagRewriteResult result;
-    std::string out;
-    try {
-      out = Rewrite(dir, entry.path().string(), "out", Shift, w_write, &result);
-    } catch (const Error&) {
-      continue;
+  for (const char* target : {"ros1_bag", "mcap_bag"}) {
+    const std::filesystem::path seeds =
+        std::filesystem::path(MPCAL_TEST_DATA_DIR) / ".." / "fuzz" / target;
+    for (const auto& entry : std::filesystem::directory_iterator(seeds)) {
+      SCOPED_TRACE(entry.path().string());
+      std::vector<std::string> w_write, w_read;
+      BagRewriteResult result;
+      std::string out;
+      try {
+        out = Rewrite(dir, entry.path().string(), "out", Shift, w_write, &result);
+      } catch (const Error&) {
+        continue;
+      }
+      EXPECT_EQ(static_cast<std::int64_t>(ReadBack(out, w_read).size()),
+                result.imu_messages);
+      ++rewritten;
     }
-    EXPECT_EQ(static_cast<std::int64_t>(ReadBack(out, w_read).size()),
-              result.imu_messages);
-    ++rewritten;
   }
   EXPECT_GE(rewritten, 4);
 }

@@ -9,10 +9,10 @@ set(_bags ${MPCAL_TEST_DATA}/bags)
 add_test(NAME cli.calibrate_bag_equals_csv
   COMMAND sh -c "set -e; rm -rf bag_equals_csv && mkdir bag_equals_csv && cd bag_equals_csv
     \"$0\" simulate static --preset mti-g --gyro --rate 128 --seed 2 --digits 0 -o s.csv >/dev/null
-    python3 '${_bags}/make_ros2_db3.py' --csv s.csv --out session --in-order
+    ${MPCAL_PYTHON} '${_bags}/make_ros2_db3.py' --csv s.csv --out session --in-order
     \"$0\" calibrate s.csv -o csv.json >/dev/null
     \"$0\" calibrate session -o bag.json >/dev/null
-    python3 '${CMAKE_CURRENT_SOURCE_DIR}/same_numbers.py' csv.json bag.json \
+    ${MPCAL_PYTHON} '${CMAKE_CURRENT_SOURCE_DIR}/same_numbers.py' csv.json bag.json \
       provenance.input input.columns input.time_unit"
     $<TARGET_FILE:mpcal_cli>
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})

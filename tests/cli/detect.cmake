@@ -86,7 +86,7 @@ mpcal_cli_test(detect_xsens_turn_scale EXIT 0
 add_test(NAME cli.detect_xsens_turns_json
   COMMAND ${MPCAL_CLI_EXPECT} 0 "^37 89\\.[0-9]"
           --workdir ${CMAKE_CURRENT_BINARY_DIR}/detect_xsens_turns_json
-          -- sh -c "\"$0\" detect '${_xsens}' --gyro-log '${_xsens_gyro}' --units counts --gyro-units counts --json p.json >/dev/null && exec python3 -c 'import json; t = json.load(open(\"p.json\"))[\"turns\"]; print(len(t), round(t[0][\"angle_deg\"], 1))'"
+          -- sh -c "\"$0\" detect '${_xsens}' --gyro-log '${_xsens_gyro}' --units counts --gyro-units counts --json p.json >/dev/null && exec ${MPCAL_PYTHON} -c 'import json; t = json.load(open(\"p.json\"))[\"turns\"]; print(len(t), round(t[0][\"angle_deg\"], 1))'"
           $<TARGET_FILE:mpcal_cli>)
 set_tests_properties(cli.detect_xsens_turns_json PROPERTIES LABELS cli)
 mpcal_cli_test(detect_help_gyro EXIT 0 MATCH "--gyro-log xsens_gyro.mat" ARGS detect --help)

@@ -21,7 +21,7 @@ add_test(NAME cli.calibrate_two_rate_bag_as_single_stream
   COMMAND sh -c "set -e; rm -rf two_rate_single && mkdir two_rate_single && cd two_rate_single
     \"$0\" calibrate '${_bag2}' --topic /imu/data -o one.json >/dev/null
     \"$0\" calibrate '${_bag2}' --accel-topic /camera/accel/sample --gyro-topic /camera/gyro/sample -o two.json >/dev/null
-    python3 '${CMAKE_CURRENT_SOURCE_DIR}/within_sigma.py' one.json two.json 1e-9 3"
+    ${MPCAL_PYTHON} '${CMAKE_CURRENT_SOURCE_DIR}/within_sigma.py' one.json two.json 1e-9 3"
     $<TARGET_FILE:mpcal_cli>
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(cli.calibrate_two_rate_bag_as_single_stream PROPERTIES LABELS cli)
@@ -40,7 +40,7 @@ mpcal_cli_test(calibrate_two_topics_need_choosing EXIT 1
 add_test(NAME cli.streams_phone_exports_setup
   COMMAND sh -c "set -e; rm -rf phone && mkdir phone && cd phone
     \"$0\" simulate static --preset mti-g --gyro --seed 11 --positions 12 --dwell 5 --turn 1.5 --rest 3 --rate 2000 --noise-density 0.0005 --digits 9 -o dense.csv >/dev/null
-    python3 '${_streams}/make_streams.py' dense.csv . --format sensorlogger --format phyphox
+    ${MPCAL_PYTHON} '${_streams}/make_streams.py' dense.csv . --format sensorlogger --format phyphox
     rm dense.csv"
     $<TARGET_FILE:mpcal_cli>
   WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
