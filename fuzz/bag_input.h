@@ -1,8 +1,8 @@
 // What the bag fuzz targets share: the recording at `path` inspected, then
 // its /imu/data topic read, then (ROS 1 and MCAP, the kinds `apply` writes)
-// rewritten as `apply` does, and what is written read back whole. Any outcome but success or mpcal::Error is a
-// finding: another exception, a sanitizer report, a timeout or memory beyond
-// the limit (every length is checked against what remains and the caps in
+// rewritten as `apply` does, and what is written read back whole. Any outcome but success
+// or mpcal::Error is a finding: another exception, a sanitizer report, a timeout or
+// memory beyond the limit (every length is checked against what remains and the caps in
 // bag.h), or a batch that breaks the sink's contract.
 #pragma once
 

@@ -54,7 +54,8 @@ LogOptions LogOptionsFrom(const py::dict& o) {
   log.time_unit = *time_unit;
   log.rate_hz = Get<double>(o, "rate_hz");
   const auto time = Get<std::string>(o, "time");
-  if (time != ToString(RecordingTime::kHeader) && time != ToString(RecordingTime::kReceive)) {
+  if (time != ToString(RecordingTime::kHeader) &&
+      time != ToString(RecordingTime::kReceive)) {
     throw Error(ErrorKind::kOption,
                 fmt::format("time='{}': give 'header' (the messages' stamps) or "
                             "'receive' (when the recorder received them)",

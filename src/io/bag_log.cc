@@ -89,7 +89,7 @@ namespace {
 // not need more), the readings as they are.
 struct HeldRows {
   ChunkRows rows;
-  bool gyro = true;  // as the first message says, for every row
+  bool gyro = true;           // as the first message says, for every row
   std::int64_t first_ns = 0;  // the first message's time, the rows' origin
 };
 
@@ -172,13 +172,14 @@ LogStreamSummary ReadBagRows(const std::string& path,
   rec->gyro_units = GyroUnits::kRadps;
   rec->source = path;
   std::vector<std::string> warnings;
-  HeldRows held = ReadMessages(
-      path, topic, options.recording_time, options.gyroscope_only, warnings);
+  HeldRows held =
+      ReadMessages(path, topic, options.recording_time, options.gyroscope_only, warnings);
   StampOrder order = SortByTime(held.rows.time, held.rows.accel, held.rows.gyro);
   order.worst_back_s /= kNsPerS;  // sorted in ns
   // The earliest time, so that two topics of one recording share a clock.
   if (!held.rows.time.empty()) {
-    rec->time_origin_ns = held.first_ns + static_cast<std::int64_t>(held.rows.time.front());
+    rec->time_origin_ns =
+        held.first_ns + static_cast<std::int64_t>(held.rows.time.front());
   }
   ToSecondsFromFirst(held.rows.time);
   held.rows.lines = held.rows.time.size();
