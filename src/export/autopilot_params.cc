@@ -67,9 +67,11 @@ ParameterNames NamesOf(Autopilot autopilot) {
   return n;
 }
 
-// ArduPilot reads a parameter file 100 characters at a time
-// (AP_Param::load_defaults_file): the rest of a longer comment line would be
-// read as a parameter line. Every line stays within 99 characters.
+// ArduPilot reads a parameter file in pieces of at most 98 characters
+// (fgets into a char[100] with sizeof - 1, AP_Param::read_param_defaults_file):
+// the rest of a longer comment line would be read as a parameter line. Every
+// line stays within 98 characters before its newline (a newline read alone
+// is refused by AP_Param::parse_param_line).
 std::string AutopilotComment(std::string text) {
   constexpr std::size_t kMaxText = 96;
   for (char& ch : text) {
