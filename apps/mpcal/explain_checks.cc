@@ -10,6 +10,56 @@
 
 namespace mpcal::cli {
 
+namespace {
+
+// A verification's checks (JudgeVerification).
+std::string ExplainWalkCheck(const Check& c) {
+  switch (c.finding) {
+    case CheckFinding::kCorrectedCloser:
+      return fmt::format(
+          "the corrected walk is closer to the reference: {:.2f} m RMS against {:.2f} m "
+          "raw",
+          c.value,
+          c.limit);
+    case CheckFinding::kCorrectedNotCloser:
+      return fmt::format(
+          "the corrected walk is no closer to the reference ({:.2f} m RMS against {:.2f} "
+          "m raw): this walk does not confirm the calibration; is it this sensor's, "
+          "from this power-up?",
+          c.value,
+          c.limit);
+    case CheckFinding::kNoCalibration:
+      return "no calibration given (--calib): only the raw walk";
+    case CheckFinding::kClockAgrees:
+      return fmt::format("the IMU and the reference line up (offset {:.3f} s)", c.value);
+    case CheckFinding::kClockDisagrees:
+      return fmt::format(
+          "the starts of motion suggest an offset of {:.1f} s, not the {:.3f} s used: "
+          "the clocks may differ (see the warning)",
+          c.value,
+          c.limit);
+    case CheckFinding::kStopsFound:
+      return fmt::format(
+          "{} with the end rests: zero-velocity updates during the walk",
+          Count(static_cast<std::size_t>(c.count), "still stretch", "still stretches"));
+    case CheckFinding::kNoStop:
+      return "no stop during the walk: a bias's position error grows with the square "
+             "of the walking time; stop for a few seconds now and then";
+    case CheckFinding::kWalkGyroUsed:
+      return "the gyroscope carried the attitude through the turns";
+    case CheckFinding::kWalkGyroUnused:
+      return "the log has a gyroscope, left out: the attitude is fixed after the start";
+    case CheckFinding::kWalkNoGyro:
+      return "no gyroscope in the log: the attitude is fixed after the start, right "
+             "only for a walk that does not turn the sensor";
+    default:
+      break;
+  }
+  return "";
+}
+
+}  // namespace
+
 std::string ExplainCheck(const Check& c) {
   constexpr double kDegPerRad = 180.0 / std::numbers::pi;
   switch (c.finding) {
@@ -80,43 +130,8 @@ std::string ExplainCheck(const Check& c) {
              "warning)";
     case CheckFinding::kGyroNotConverged:
       return "not calibrated, not written: its fit did not converge";
-    case CheckFinding::kCorrectedCloser:
-      return fmt::format(
-          "the corrected walk is closer to the reference: {:.2f} m RMS against {:.2f} m "
-          "raw",
-          c.value,
-          c.limit);
-    case CheckFinding::kCorrectedNotCloser:
-      return fmt::format(
-          "the corrected walk is no closer to the reference ({:.2f} m RMS against {:.2f} "
-          "m raw): this walk does not confirm the calibration; is it this sensor's, "
-          "from this power-up?",
-          c.value,
-          c.limit);
-    case CheckFinding::kNoCalibration:
-      return "no calibration given (--calib): only the raw walk";
-    case CheckFinding::kClockAgrees:
-      return fmt::format("the IMU and the reference line up (offset {:.3f} s)", c.value);
-    case CheckFinding::kClockDisagrees:
-      return fmt::format(
-          "the starts of motion suggest an offset of {:.1f} s, not the {:.3f} s used: "
-          "the clocks may differ (see the warning)",
-          c.value,
-          c.limit);
-    case CheckFinding::kStopsFound:
-      return fmt::format(
-          "{} with the end rests: zero-velocity updates during the walk",
-          Count(static_cast<std::size_t>(c.count), "still stretch", "still stretches"));
-    case CheckFinding::kNoStop:
-      return "no stop during the walk: a bias's position error grows with the square "
-             "of the walking time; stop for a few seconds now and then";
-    case CheckFinding::kWalkGyroUsed:
-      return "the gyroscope carried the attitude through the turns";
-    case CheckFinding::kWalkGyroUnused:
-      return "the log has a gyroscope, left out: the attitude is fixed after the start";
-    case CheckFinding::kWalkNoGyro:
-      return "no gyroscope in the log: the attitude is fixed after the start, right "
-             "only for a walk that does not turn the sensor";
+    default:  // a verification's
+      return ExplainWalkCheck(c);
   }
   return "";
 }

@@ -20,7 +20,10 @@ std::optional<std::string> FirstNonFinite(const json& node, const std::string& p
   }
   if (node.is_object()) {
     for (const auto& [key, value] : node.items()) {
-      if (auto p = FirstNonFinite(value, path.empty() ? key : path + "." + key)) return p;
+      std::string child = path;
+      if (!child.empty()) child += '.';
+      child += key;
+      if (auto p = FirstNonFinite(value, child)) return p;
     }
   } else if (node.is_array()) {
     for (std::size_t i = 0; i < node.size(); ++i) {
