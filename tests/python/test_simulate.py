@@ -54,8 +54,8 @@ def test_unknown_preset():
 
 
 def test_ctrl_c_interrupts_a_long_calibration():
-    # 1.7 M rows (1 kHz, 26 positions of 60 s): about 70 ms of work on an
-    # idle machine (with the fuzzers running), several times that loaded.
+    # 1.7 M rows (1 kHz, 26 positions of 60 s): about 70 ms of work on a
+    # 2-core machine, several times that when it is loaded.
     long = mpcal.simulate_static(seed=1, rate_hz=1000, dwell_s=60, initial_rest_s=88)
     started = time.monotonic()
     mpcal.calibrate(long.t, long.accel)
