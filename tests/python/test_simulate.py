@@ -78,8 +78,10 @@ def test_ctrl_c_interrupts_a_long_calibration():
     assert min(waits) < 0.9 * whole_s, (waits, whole_s)
 
 
-def test_other_threads_run_during_a_calibration(session):
-    # With the GIL held for the whole call, the counter would not move.
+def test_other_threads_run_during_a_calibration():
+    # With the GIL held for the whole call, the counter would not move. The
+    # 1.7 M-row session (about 70 ms) gives it time for dozens of ticks.
+    session = mpcal.simulate_static(seed=1, rate_hz=1000, dwell_s=60, initial_rest_s=88)
     ticks = []
     stop = threading.Event()
 
