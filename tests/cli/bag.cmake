@@ -89,3 +89,11 @@ mpcal_cli_test(apply_noise_with_a_text_log EXIT 2
   MATCH "^mpcal: error: --noise: '.*session\\.csv' is a text log, which has no covariances"
   ABSENT out.csv
   ARGS apply ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags}/session.csv -o out.csv --noise ${_bags}/session.csv)
+
+# A damaged MCAP file (found by the mcap_bag fuzz target) whose copy reads back
+# otherwise than it was written: apply refuses it and leaves no output.
+mpcal_cli_test(apply_bag_damaged_does_not_read_back EXIT 1
+  MATCH "^mpcal: error: .*damaged_reads_back_otherwise\\.mcap: the corrected recording does not read back whole"
+  ABSENT out.mcap
+  ARGS apply ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags}/damaged_reads_back_otherwise.mcap
+       -o out.mcap)
