@@ -133,8 +133,23 @@ def scratch_directory(root, build):
     return scratch
 
 
+def build_python_dir(build):
+    """The directory of the interpreter the build configured (MPCAL_PYTHON:
+    Debian's, with the packages install-deps.sh installs), so that the pages'
+    `python3` is that one and not one earlier on PATH (pyenv's, say)."""
+    try:
+        with open(os.path.join(build, "CMakeCache.txt"), encoding="utf-8") as cache:
+            for line in cache:
+                if line.startswith("MPCAL_PYTHON:FILEPATH="):
+                    return os.path.dirname(line.split("=", 1)[1].strip())
+    except OSError:
+        pass
+    return ""
+
+
 def run_block(steps, work, build):
-    env = dict(os.environ, PATH=build + os.pathsep + os.environ["PATH"],
+    path = [build, build_python_dir(build), os.environ["PATH"]]
+    env = dict(os.environ, PATH=os.pathsep.join(p for p in path if p),
                COLUMNS="100", NO_COLOR="1")
     outputs = []
     for command, _ in steps:
