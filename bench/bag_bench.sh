@@ -80,7 +80,6 @@ if [ ! -d "$cache/camera_ros2" ]; then
   echo "writing camera_ros2/ ..."
   rm -rf "$cache/camera_ros2.tmp"
   python3 "$here/bag_bench_ros2.py" "$csv" "$cache/camera_ros2.tmp"
-  mv "$cache/camera_ros2.tmp/camera_ros2.tmp_0.db3" "$cache/camera_ros2.tmp/camera_ros2_0.db3"
   mv "$cache/camera_ros2.tmp" "$cache/camera_ros2"
 fi
 files+=(camera_ros2)

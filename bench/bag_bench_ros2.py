@@ -15,12 +15,11 @@ them, in time order, as a recorder inserts two topics.
 import csv
 import os
 import random
-import sqlite3
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                 "..", "tests", "data", "bags"))
-from make_ros2_db3 import imu  # noqa: E402  (the fixtures' CDR encoder)
+from make_ros2_db3 import imu, open_database, write_metadata  # noqa: E402
 
 EPOCH_NS = 1700000000 * 10**9
 CAMERA_HZ = 30
@@ -29,23 +28,11 @@ CAMERA_HZ = 30
 def main():
     csv_path, out = sys.argv[1], sys.argv[2]
     os.makedirs(out)
-    name = os.path.basename(os.path.normpath(out))
-    db = sqlite3.connect(os.path.join(out, name + "_0.db3"))
-    db.executescript("""
-      CREATE TABLE schema(schema_version INTEGER PRIMARY KEY, ros_distro TEXT NOT NULL);
-      CREATE TABLE metadata(id INTEGER PRIMARY KEY, metadata_version INTEGER NOT NULL,
-                            metadata TEXT NOT NULL);
-      CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL,
-                          serialization_format TEXT NOT NULL,
-                          offered_qos_profiles TEXT NOT NULL,
-                          type_description_hash TEXT NOT NULL);
-      CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL,
-                            timestamp INTEGER NOT NULL, data BLOB NOT NULL);
-      CREATE INDEX timestamp_idx ON messages (timestamp ASC);
-      INSERT INTO schema VALUES (4, 'jazzy');
-      INSERT INTO topics VALUES (1, '/camera/image_raw', 'sensor_msgs/msg/Image', 'cdr', '', '');
-      INSERT INTO topics VALUES (2, '/imu/data', 'sensor_msgs/msg/Imu', 'cdr', '', '');
-    """)
+    # Named for the directory it is moved to once whole (bag_bench.sh writes
+    # NAME.tmp and renames it).
+    name = os.path.basename(os.path.normpath(out)).removesuffix(".tmp")
+    db = open_database(out, [("/camera/image_raw", "sensor_msgs/msg/Image"),
+                             ("/imu/data", "sensor_msgs/msg/Imu")], name)
     rng = random.Random(7)
     frames = [rng.randbytes(640 * 480 + 64) for _ in range(8)]
     frame = 0
@@ -60,8 +47,7 @@ def main():
                        (t_ns, imu(row, t_ns)))
     db.commit()
     db.close()
-    with open(os.path.join(out, "metadata.yaml"), "w") as f:
-        f.write("rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: sqlite3\n")
+    write_metadata(out, name)
 
 
 if __name__ == "__main__":

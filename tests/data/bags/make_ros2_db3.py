@@ -73,19 +73,11 @@ def text(s):
     return c.bytes()
 
 
-def main():
-    here = os.path.dirname(os.path.abspath(__file__))
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--csv", default=os.path.join(here, "session.csv"))
-    parser.add_argument("--out", default=os.path.join(here, "imu_ros2"))
-    parser.add_argument("--in-order", action="store_true")
-    args = parser.parse_args()
-    with open(args.csv, newline="") as f:
-        rows = list(csv.DictReader(f))
-    bag = args.out
-    shutil.rmtree(bag, ignore_errors=True)
-    os.makedirs(bag)
-    name = os.path.basename(os.path.normpath(bag))
+def open_database(bag, topics, name=None):
+    """BAG/<name>_0.db3 (name: the directory's by default) with rosbag2's
+    tables (SqliteStorage::initialize) and `topics`, (name, type) pairs, as
+    topic ids 1, 2, ... in order."""
+    name = name or os.path.basename(os.path.normpath(bag))
     db = sqlite3.connect(os.path.join(bag, name + "_0.db3"))
     db.executescript("""
       CREATE TABLE schema(schema_version INTEGER PRIMARY KEY, ros_distro TEXT NOT NULL);
@@ -99,9 +91,35 @@ def main():
                             timestamp INTEGER NOT NULL, data BLOB NOT NULL);
       CREATE INDEX timestamp_idx ON messages (timestamp ASC);
       INSERT INTO schema VALUES (4, 'jazzy');
-      INSERT INTO topics VALUES (1, '/chatter', 'std_msgs/msg/String', 'cdr', '', '');
-      INSERT INTO topics VALUES (2, '/imu/data', 'sensor_msgs/msg/Imu', 'cdr', '', '');
     """)
+    for topic_id, (topic, message_type) in enumerate(topics, start=1):
+        db.execute("INSERT INTO topics VALUES (?, ?, ?, 'cdr', '', '')",
+                   (topic_id, topic, message_type))
+    return db
+
+
+def write_metadata(bag, name=None):
+    """BAG/metadata.yaml, naming its one database file, <name>_0.db3."""
+    name = name or os.path.basename(os.path.normpath(bag))
+    with open(os.path.join(bag, "metadata.yaml"), "w") as f:
+        f.write("rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: sqlite3\n"
+                "  relative_file_paths:\n    - %s_0.db3\n" % name)
+
+
+def main():
+    here = os.path.dirname(os.path.abspath(__file__))
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--csv", default=os.path.join(here, "session.csv"))
+    parser.add_argument("--out", default=os.path.join(here, "imu_ros2"))
+    parser.add_argument("--in-order", action="store_true")
+    args = parser.parse_args()
+    with open(args.csv, newline="") as f:
+        rows = list(csv.DictReader(f))
+    bag = args.out
+    shutil.rmtree(bag, ignore_errors=True)
+    os.makedirs(bag)
+    db = open_database(bag, [("/chatter", "std_msgs/msg/String"),
+                             ("/imu/data", "sensor_msgs/msg/Imu")])
     stamps = [EPOCH_NS + int(round(float(r["t"]) * 1e9)) for r in rows]
     if not args.in_order:
         a, b = SWAPPED
@@ -116,9 +134,7 @@ def main():
     db.commit()
     db.execute("VACUUM")
     db.close()
-    with open(os.path.join(bag, "metadata.yaml"), "w") as f:
-        f.write("rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: sqlite3\n"
-                "  relative_file_paths:\n    - %s_0.db3\n" % name)
+    write_metadata(bag)
 
 
 if __name__ == "__main__":
