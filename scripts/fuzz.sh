@@ -11,7 +11,7 @@ set -euo pipefail
 seconds=${1:-60}
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${FUZZ_BUILD:-$root/build-fuzz}
-targets=${FUZZ_TARGETS:-"log_reader calibration_file gnss_reader ros1_bag mcap_bag ros2_bag import"}
+targets=${FUZZ_TARGETS:-"log_reader live_log calibration_file gnss_reader ros1_bag mcap_bag ros2_bag import"}
 jobs=${JOBS:-$(nproc)}
 
 # Debian's clang (bookworm: 14); libFuzzer comes with it.

@@ -25,6 +25,7 @@ demo=(
   liblz4-dev           # ROS 1 and MCAP lz4 chunks (the LZ4 frame format)
   libbz2-dev           # ROS 1 bz2 chunks
   zlib1g-dev           # MCAP chunks' CRC-32
+  libserialport-dev    # serial ports for live sessions (src/record)
 )
 # The Debian package (cmake/MpcalPackage.cmake).
 package=(

@@ -451,13 +451,13 @@ LineVerdict ParseLineSlowly(const RowConversion& conv,
 
 }  // namespace
 
-// The rows of a chunk's lines, up to the first malformed one (and whether
-// anything but blank lines follows it).
-void ChunkPipeline::ParseLines(Slot* c) const {
-  ChunkRows& out = c->rows;
-  const RowConversion& conv = conversion_;
-  out.bytes = std::string_view(c->bytes.get(), c->size);
-  out.header_line = c->sequence == 0 ? conv.header_line : 0;
+void ParseChunkLines(const RowConversion& conv,
+                     std::string_view bytes,
+                     std::size_t header_line,
+                     ChunkRows* rows) {
+  ChunkRows& out = *rows;
+  out.bytes = bytes;
+  out.header_line = header_line;
   out.time.clear();
   out.accel.clear();
   out.gyro.clear();
@@ -467,8 +467,8 @@ void ChunkPipeline::ParseLines(Slot* c) const {
   out.failure_line = 0;
   out.failure.clear();
   out.failure_fatal = false;
-  const char* p = c->bytes.get();
-  const char* const end = p + c->size;
+  const char* p = bytes.data();
+  const char* const end = p + bytes.size();
   std::size_t line = 0;
   LogLine row;
   std::array<double, kGz + 1> by_role{};
@@ -499,6 +499,13 @@ void ChunkPipeline::ParseLines(Slot* c) const {
   }
   // Lines after a fatal failure are not needed (the sink stops there).
   out.lines = line;
+}
+
+void ChunkPipeline::ParseLines(Slot* c) const {
+  ParseChunkLines(conversion_,
+                  std::string_view(c->bytes.get(), c->size),
+                  c->sequence == 0 ? conversion_.header_line : 0,
+                  &c->rows);
 }
 
 }  // namespace mpcal::logio

@@ -153,6 +153,16 @@ struct RowConversion {
   std::size_t header_end = 0;   // bytes through the header line: the first chunk's least
 };
 
+/// The rows of `bytes`, whole lines (the input's last may lack its end),
+/// into `*rows` (reused: cleared first): up to the first malformed line, and
+/// whether anything but blank lines follows it. `header_line`: the header's
+/// 1-based line within `bytes`, 0 for none. The one conversion of ReadLog's
+/// chunks and of a live stream's lines (src/record).
+void ParseChunkLines(const RowConversion& conv,
+                     std::string_view bytes,
+                     std::size_t header_line,
+                     ChunkRows* rows);
+
 /// ReadLog is bound by turning text into numbers, so it parses on two
 /// cores: the input is cut into chunks of whole lines, read in file order by
 /// whichever thread is free; each is parsed into its own rows; the calling

@@ -94,11 +94,8 @@ std::pair<std::size_t, std::size_t> CountFields(std::string_view text) {
   return {fields, numbers};
 }
 
-// A line of at least 3 numbers and nothing else.
-bool IsNumberRow(std::string_view text) {
-  const auto [fields, numbers] = CountFields(text);
-  return fields >= 3 && numbers == fields;
-}
+// Fields of a number row, whatever separates them.
+std::size_t FieldCount(std::string_view text) { return CountFields(text).first; }
 
 // A data row with a bad field ("0.2,4,abc,5"): mostly numbers. Such a line
 // before the data is a log's own error, never boot text to skip.
@@ -138,7 +135,8 @@ class Sniffer {
  private:
   std::vector<Sniffed> ContentLines() const;
   void SkipBootText(std::vector<Sniffed>* lines, std::size_t noise_end);
-  std::size_t FirstNumberRun(const std::vector<Sniffed>& lines) const;
+  std::size_t FirstNumberRun(const std::vector<Sniffed>& lines,
+                             std::size_t from = 0) const;
   void WarnSkipped(std::size_t start_line, bool header);
   void FindSeparators(const std::vector<Sniffed>& lines);
   std::size_t FindHeader(const std::vector<Sniffed>& lines);
@@ -172,8 +170,9 @@ std::vector<Sniffed> Sniffer::ContentLines() const {
 }
 
 // The index of the first of three number rows in a row; lines.size() if none.
-std::size_t Sniffer::FirstNumberRun(const std::vector<Sniffed>& lines) const {
-  for (std::size_t i = 0; i + 2 < lines.size() || (i < lines.size() && eof_); ++i) {
+std::size_t Sniffer::FirstNumberRun(const std::vector<Sniffed>& lines,
+                                    std::size_t from) const {
+  for (std::size_t i = from; i + 2 < lines.size() || (i < lines.size() && eof_); ++i) {
     bool run = true;
     for (std::size_t k = i; k < std::min(i + 3, lines.size()) && run; ++k) {
       run = IsNumberRow(lines[k].text);
@@ -183,10 +182,29 @@ std::size_t Sniffer::FirstNumberRun(const std::vector<Sniffed>& lines) const {
   return lines.size();
 }
 
+// A serial stream opened in the middle of a line starts with the line's
+// tail: numbers only, fewer fields than the rows of the first run of data
+// (`run`, three rows that agree among themselves), whether boot text
+// follows it (a board that resets when its port is opened) or not. Only
+// the first content line can be one.
+bool IsCutLine(const std::vector<Sniffed>& lines, std::size_t i, std::size_t run) {
+  if (run <= i || run + 2 >= lines.size()) return false;
+  const std::size_t fields = FieldCount(lines[run].text);
+  const auto [tail_fields, tail_numbers] = CountFields(lines[i].text);
+  if (tail_fields == 0 || tail_numbers != tail_fields || tail_fields >= fields) {
+    return false;
+  }
+  for (std::size_t k = run + 1; k <= run + 2; ++k) {
+    if (FieldCount(lines[k].text) != fields) return false;
+  }
+  return true;
+}
+
 // Serial boot text before the header ("Initializing I2C devices...", a
 // partial line): the lines before the first run of three number rows and
 // the line just above it (the header, when it has the rows' separator) are
-// skipped, with a warning that says where the data starts. Only when such a
+// skipped, with a warning that says where the data starts; so is a first
+// line cut short (IsCutLine), never a header. Only when such a
 // run exists: a log that never has one keeps its own errors.
 void Sniffer::SkipBootText(std::vector<Sniffed>* lines, std::size_t noise_end) {
   std::size_t noise_lines = 0;
@@ -194,10 +212,13 @@ void Sniffer::SkipBootText(std::vector<Sniffed>* lines, std::size_t noise_end) {
     noise_lines = static_cast<std::size_t>(
         std::count(head_.begin() + begin_, head_.begin() + noise_end, '\n'));
   }
-  const std::size_t data = FirstNumberRun(*lines);
+  std::size_t data = FirstNumberRun(*lines);
   // Lines within the serial noise never count, whatever follows.
   std::size_t first = 0;
   while (first < lines->size() && (*lines)[first].line <= noise_lines) ++first;
+  const std::size_t run = data == first ? FirstNumberRun(*lines, first + 1) : data;
+  const bool cut = data >= first && IsCutLine(*lines, first, run);
+  if (cut) data = run;
   if (data == lines->size() || data < first) {
     if (first > 0) lines->erase(lines->begin(), lines->begin() + first);
     out_.skipped_lines = noise_lines;
@@ -206,12 +227,13 @@ void Sniffer::SkipBootText(std::vector<Sniffed>* lines, std::size_t noise_end) {
     return;
   }
   std::size_t start = data;
-  if (data > first && IsHeaderAbove((*lines)[data].text, (*lines)[data - 1].text)) {
+  if (data > first + (cut ? 1 : 0) &&
+      IsHeaderAbove((*lines)[data].text, (*lines)[data - 1].text)) {
     start = data - 1;
   }
   if (start == 0 && noise_lines == 0) return;
   bool at_header = start < data;
-  for (std::size_t i = first; i < start; ++i) {
+  for (std::size_t i = first + (cut ? 1 : 0); i < start; ++i) {
     if (IsMostlyNumbers((*lines)[i].text)) {
       start = first;
       at_header = false;
@@ -509,6 +531,11 @@ DetectedLayout Sniffer::Run(bool parse_gyro) {
 }
 
 }  // namespace
+
+bool IsNumberRow(std::string_view text) {
+  const auto [fields, numbers] = CountFields(text);
+  return fields >= 3 && numbers == fields;
+}
 
 DetectedLayout DetectLayout(std::string_view head,
                             bool whole_input,

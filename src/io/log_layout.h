@@ -30,6 +30,11 @@ struct DetectedLayout {
   std::vector<std::string> warnings;
 };
 
+/// A line of at least three numbers and nothing else, whatever separates
+/// them: what layout detection takes for a data row. (A live stream waits for
+/// enough of them before it detects its layout.)
+bool IsNumberRow(std::string_view text);
+
 /// Finds the layout of a log from `head`, its first bytes (a megabyte or
 /// so; `whole_input` when that is all of it). `source` names it in messages.
 /// `parse_gyro`: the gyroscope columns are parsed too (they count towards
