@@ -562,6 +562,18 @@ void AddNoiseCommand(CLI::App& root) {
       ->capture_default_str()
       ->check(NumberIn(0.5, 0.999))
       ->group("Allan deviation");
+  app->add_flag_callback(
+         "--without-gauss-markov",
+         [f] { f->noise.model_gauss_markov = false; },
+         "Leave the Gauss-Markov process (a bump) out of the model: the model check "
+         "then flags a bump instead of measuring it")
+      ->group("Noise model");
+  app->add_flag_callback(
+         "--without-sinusoid",
+         [f] { f->noise.model_sinusoid = false; },
+         "Leave the sinusoid out of the model: the model check then flags one instead "
+         "of measuring it")
+      ->group("Noise model");
   AddLogOptions(*app,
                 f->log,
                 {"raw ADC; needs --calib to scale them",

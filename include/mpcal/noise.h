@@ -252,18 +252,90 @@ struct ModelCheck {
   int excluded = 0;
 };
 
-/// One axis: its Allan curve and the five terms (index: NoiseTerm).
+/// A first-order Gauss-Markov process of one axis (exponentially correlated
+/// noise, dx/dt = −x/τc + w, stationary standard deviation σ): a bump in the
+/// Allan deviation, rising as √τ below τc, peaking at 0.62 σ near 1.89 τc,
+/// falling as 1/√τ above (GaussMarkovAvar). In the model only when the
+/// curve shows it (the information criterion of docs/method.md).
+struct GaussMarkovTerm {
+  /// kMeasured: the values below; kNotSeen: no bump the criterion accepts
+  /// (or the term left out of the model: `modelled` false); kDisagrees: the
+  /// model misses the curve where it dominates.
+  TermStatus status = TermStatus::kNotSeen;
+  /// NoiseOptions::model_gauss_markov: whether the model could include it.
+  bool modelled = true;
+  /// Stationary standard deviation σ (u) and its interval; measured only.
+  std::optional<double> sigma;
+  double sigma_lo = 0.0;
+  double sigma_hi = 0.0;
+  /// Correlation time τc (s) and its interval; measured only.
+  double tau_c_s = 0.0;
+  double tau_c_lo_s = 0.0;
+  double tau_c_hi_s = 0.0;
+  /// The τ range it was read from: where it carries most of the fitted
+  /// variance (measured).
+  double tau_lo_s = 0.0;
+  double tau_hi_s = 0.0;
+};
+
+/// A sinusoid of one axis, A sin(2πt/P + φ) (a vibration, a control loop):
+/// a hump in the Allan deviation peaking near τ ≈ 0.37 P and falling as 1/τ
+/// with ripples at multiples of P (SinusoidAvar). In the model only when
+/// the curve shows it.
+struct SinusoidTerm {
+  /// As GaussMarkovTerm::status.
+  TermStatus status = TermStatus::kNotSeen;
+  /// NoiseOptions::model_sinusoid.
+  bool modelled = true;
+  /// Amplitude A (u) and its interval; measured only.
+  std::optional<double> amplitude;
+  double amplitude_lo = 0.0;
+  double amplitude_hi = 0.0;
+  /// Period P (s) and its interval; measured only.
+  double period_s = 0.0;
+  double period_lo_s = 0.0;
+  double period_hi_s = 0.0;
+  /// The τ range it was read from (measured).
+  double tau_lo_s = 0.0;
+  double tau_hi_s = 0.0;
+};
+
+/// Allan variance (u²) at τ of a first-order Gauss-Markov process of
+/// stationary variance σ² and correlation time τc (IEEE Std 952-1997
+/// Annex C; El-Sheimy, Hou & Niu 2008, with q² = 2σ²/τc):
+///   σ²(τ) = (2σ²τc/τ) [1 − (τc/2τ)(3 − 4e^{−τ/τc} + e^{−2τ/τc})],
+/// → 2σ²τ/(3τc) (a random walk) for τ ≪ τc, → 2σ²τc/τ (white) for τ ≫ τc.
+double GaussMarkovAvar(double sigma2, double tau_c_s, double tau_s);
+/// Allan variance (u²) at τ of A sin(2πt/P + φ) (IEEE Std 952-1997
+/// Annex C): σ²(τ) = A² sin⁴(πτ/P) / (πτ/P)².
+double SinusoidAvar(double amplitude2, double period_s, double tau_s);
+
+/// One axis: its Allan curve, the five IEEE terms (index: NoiseTerm), and
+/// the Gauss-Markov process and sinusoid that real sensors add.
 struct AxisNoise {
   std::vector<AllanPoint> curve;
   std::array<TermEstimate, kNoiseTermCount> terms;
+  GaussMarkovTerm gauss_markov;
+  SinusoidTerm sinusoid;
   /// The fitted model against the curve.
   ModelCheck check;
   /// The fitted model in the variance domain, every term included (Q², N²,
   /// B², K², R²), to draw the fitted curve: a term not measured may carry a
   /// little of it, but is never reported as a value.
   std::array<double, kNoiseTermCount> fit_avar_coefficients{};
+  /// The Gauss-Markov process and sinusoid in the fitted model (σ² = 0,
+  /// A² = 0: not in it).
+  struct FittedGaussMarkov {
+    double sigma2 = 0.0;  ///< σ², u²
+    double tau_c_s = 0.0;
+  } fit_gauss_markov;
+  struct FittedSinusoid {
+    double amplitude2 = 0.0;  ///< A², u²
+    double period_s = 0.0;
+  } fit_sinusoid;
   const TermEstimate& term(NoiseTerm t) const { return terms[static_cast<int>(t)]; }
-  /// The fitted σ²(τ) (u²), from fit_avar_coefficients.
+  /// The fitted σ²(τ) (u²): fit_avar_coefficients, fit_gauss_markov and
+  /// fit_sinusoid.
   double FittedAvar(double tau_s) const;
 };
 
@@ -290,6 +362,11 @@ struct NoiseOptions {
   /// on 90 axes of 1 h at 100 Hz; with a low-pass filter or a Gauss-Markov
   /// bump left out of the model, 0.8 to 1).
   double max_misfit_share = 0.25;
+  /// Whether the model may include a first-order Gauss-Markov process and a
+  /// sinusoid (each only when the curve shows it). Off: the model has the
+  /// IEEE terms alone, and the check flags a bump or a sinusoid it lacks.
+  bool model_gauss_markov = true;
+  bool model_sinusoid = true;
 
   std::string Validate() const;
 };

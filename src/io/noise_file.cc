@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -39,6 +41,54 @@ json TermJson(const TermEstimate& e) {
   return j;
 }
 
+// The status and, when measured, the interval of an extra term; `value`,
+// `lo`, `hi` its named figures ({key, value} pairs in order).
+using Figures = std::vector<std::pair<std::string, double>>;
+
+json ExtraTermJson(TermStatus status,
+                   bool modelled,
+                   bool measured,
+                   const Figures& figures,
+                   double tau_lo_s,
+                   double tau_hi_s) {
+  json j;
+  j["status"] = std::string(ToString(status));
+  j["modelled"] = modelled;
+  if (measured) {
+    for (const auto& [key, v] : figures) j[key] = v;
+    j["tau_range_s"] = {tau_lo_s, tau_hi_s};
+  }
+  return j;
+}
+
+json GaussMarkovJson(const GaussMarkovTerm& g, const std::string& u) {
+  return ExtraTermJson(g.status,
+                       g.modelled,
+                       g.sigma.has_value(),
+                       {{"sigma_" + u, g.sigma.value_or(0.0)},
+                        {"sigma_lo_" + u, g.sigma_lo},
+                        {"sigma_hi_" + u, g.sigma_hi},
+                        {"tau_c_s", g.tau_c_s},
+                        {"tau_c_lo_s", g.tau_c_lo_s},
+                        {"tau_c_hi_s", g.tau_c_hi_s}},
+                       g.tau_lo_s,
+                       g.tau_hi_s);
+}
+
+json SinusoidJson(const SinusoidTerm& s, const std::string& u) {
+  return ExtraTermJson(s.status,
+                       s.modelled,
+                       s.amplitude.has_value(),
+                       {{"amplitude_" + u, s.amplitude.value_or(0.0)},
+                        {"amplitude_lo_" + u, s.amplitude_lo},
+                        {"amplitude_hi_" + u, s.amplitude_hi},
+                        {"period_s", s.period_s},
+                        {"period_lo_s", s.period_lo_s},
+                        {"period_hi_s", s.period_hi_s}},
+                       s.tau_lo_s,
+                       s.tau_hi_s);
+}
+
 json CheckJson(const ModelCheck& c) {
   json j;
   j["points"] = c.points;
@@ -58,9 +108,12 @@ json AxisJson(const AxisNoise& a, bool gyro) {
   for (int t = 0; t < kNoiseTermCount; ++t) {
     j[NoiseTermKey(static_cast<NoiseTerm>(t), gyro)] = TermJson(a.terms[t]);
   }
+  const std::string u = SensorUnitKey(gyro);
+  // The terms real sensors add, each in the model only when the curve shows it.
+  j["gauss_markov"] = GaussMarkovJson(a.gauss_markov, u);
+  j["sinusoid"] = SinusoidJson(a.sinusoid, u);
   // The fitted model held against the curve (ModelCheck).
   j["model_check"] = CheckJson(a.check);
-  const std::string u = SensorUnitKey(gyro);
   const AllanPoint* min = a.curve.empty() ? nullptr : &a.curve.front();
   for (const AllanPoint& p : a.curve) {
     if (p.adev < min->adev) min = &p;
@@ -98,6 +151,10 @@ json AxisJson(const AxisNoise& a, bool gyro) {
     fit[std::string(ToString(static_cast<NoiseTerm>(t)))] = a.fit_avar_coefficients[t];
   }
   allan["fit_avar_coefficients"] = fit;
+  allan["fit_gauss_markov"] = {{"sigma_" + u, std::sqrt(a.fit_gauss_markov.sigma2)},
+                               {"tau_c_s", a.fit_gauss_markov.tau_c_s}};
+  allan["fit_sinusoid"] = {{"amplitude_" + u, std::sqrt(a.fit_sinusoid.amplitude2)},
+                           {"period_s", a.fit_sinusoid.period_s}};
   j["allan"] = allan;
   return j;
 }
@@ -195,6 +252,74 @@ ModelCheck ReadCheck(const JsonReader& r, const json& o, const std::string& path
   return c;
 }
 
+// The status of an extra term and whether it was modelled; its figures are
+// read by the caller when measured.
+TermStatus ReadExtraStatus(const JsonReader& r,
+                           const json& o,
+                           const std::string& path,
+                           bool& modelled) {
+  const std::string status = r.String(o, path, "status");
+  modelled = r.Bool(o, path, "modelled");
+  if (status == "measured") return TermStatus::kMeasured;
+  if (status == "not_seen") return TermStatus::kNotSeen;
+  if (status == "disagrees") return TermStatus::kDisagrees;
+  r.Fail(
+      fmt::format("field '{}.status' must be measured, not_seen or disagrees, found '{}'",
+                  path,
+                  status));
+  return TermStatus::kNotSeen;
+}
+
+void ReadRange(const JsonReader& r,
+               const json& o,
+               const std::string& path,
+               double& lo_s,
+               double& hi_s) {
+  const json& range =
+      r.ArrayValue(r.Field(o, path, "tau_range_s"), path + ".tau_range_s", 2);
+  lo_s = r.NumberValue(range[0], path + ".tau_range_s[0]");
+  hi_s = r.NumberValue(range[1], path + ".tau_range_s[1]");
+}
+
+// The Gauss-Markov process and the sinusoid of an axis; a file without them
+// (written before they were modelled) reads as not seen.
+void ReadExtraTerms(const JsonReader& r,
+                    const json& o,
+                    const std::string& path,
+                    const std::string& u,
+                    AxisNoise& a) {
+  if (o.contains("gauss_markov")) {
+    const std::string gp = JsonReader::Join(path, "gauss_markov");
+    const json& j = r.Object(o, path, "gauss_markov");
+    GaussMarkovTerm& g = a.gauss_markov;
+    g.status = ReadExtraStatus(r, j, gp, g.modelled);
+    if (g.status == TermStatus::kMeasured) {
+      g.sigma = r.Number(j, gp, "sigma_" + u);
+      g.sigma_lo = r.Number(j, gp, "sigma_lo_" + u);
+      g.sigma_hi = r.Number(j, gp, "sigma_hi_" + u);
+      g.tau_c_s = r.Number(j, gp, "tau_c_s");
+      g.tau_c_lo_s = r.Number(j, gp, "tau_c_lo_s");
+      g.tau_c_hi_s = r.Number(j, gp, "tau_c_hi_s");
+      ReadRange(r, j, gp, g.tau_lo_s, g.tau_hi_s);
+    }
+  }
+  if (o.contains("sinusoid")) {
+    const std::string sp = JsonReader::Join(path, "sinusoid");
+    const json& j = r.Object(o, path, "sinusoid");
+    SinusoidTerm& s = a.sinusoid;
+    s.status = ReadExtraStatus(r, j, sp, s.modelled);
+    if (s.status == TermStatus::kMeasured) {
+      s.amplitude = r.Number(j, sp, "amplitude_" + u);
+      s.amplitude_lo = r.Number(j, sp, "amplitude_lo_" + u);
+      s.amplitude_hi = r.Number(j, sp, "amplitude_hi_" + u);
+      s.period_s = r.Number(j, sp, "period_s");
+      s.period_lo_s = r.Number(j, sp, "period_lo_s");
+      s.period_hi_s = r.Number(j, sp, "period_hi_s");
+      ReadRange(r, j, sp, s.tau_lo_s, s.tau_hi_s);
+    }
+  }
+}
+
 AxisNoise ReadAxis(const JsonReader& r,
                    const json& o,
                    const std::string& path,
@@ -205,12 +330,13 @@ AxisNoise ReadAxis(const JsonReader& r,
     a.terms[t] = ReadTerm(r, r.Object(o, path, key), JsonReader::Join(path, key));
   }
   a.check = ReadCheck(r, o, path);
+  const std::string u = SensorUnitKey(gyro);
+  ReadExtraTerms(r, o, path, u, a);
   const std::string ap = JsonReader::Join(path, "allan");
   const json& allan = r.Object(o, path, "allan");
   const json& tau_json = r.Field(allan, ap, "tau_s");
   if (!tau_json.is_array()) r.Fail(fmt::format("field '{}.tau_s' must be an array", ap));
   const std::size_t n = tau_json.size();
-  const std::string u = SensorUnitKey(gyro);
   const std::vector<double> tau = Numbers(r, allan, ap, "tau_s", n);
   const std::vector<double> adev = Numbers(r, allan, ap, "adev_" + u, n);
   const std::vector<double> lo = Numbers(r, allan, ap, "adev_lo_" + u, n);
@@ -237,6 +363,20 @@ AxisNoise ReadAxis(const JsonReader& r,
   const json& fit = r.Object(allan, ap, "fit_avar_coefficients");
   for (int t = 0; t < kNoiseTermCount; ++t) {
     a.fit_avar_coefficients[t] = r.Number(fit, fp, ToString(static_cast<NoiseTerm>(t)));
+  }
+  if (allan.contains("fit_gauss_markov")) {
+    const std::string gp = ap + ".fit_gauss_markov";
+    const json& g = r.Object(allan, ap, "fit_gauss_markov");
+    const double sigma = r.Number(g, gp, "sigma_" + u);
+    a.fit_gauss_markov.sigma2 = sigma * sigma;
+    a.fit_gauss_markov.tau_c_s = r.Number(g, gp, "tau_c_s");
+  }
+  if (allan.contains("fit_sinusoid")) {
+    const std::string sp = ap + ".fit_sinusoid";
+    const json& sj = r.Object(allan, ap, "fit_sinusoid");
+    const double amplitude = r.Number(sj, sp, "amplitude_" + u);
+    a.fit_sinusoid.amplitude2 = amplitude * amplitude;
+    a.fit_sinusoid.period_s = r.Number(sj, sp, "period_s");
   }
   return a;
 }

@@ -418,9 +418,29 @@ std::string NoiseOptions::Validate() const {
   return {};
 }
 
+double GaussMarkovAvar(double sigma2, double tau_c_s, double tau_s) {
+  if (!(sigma2 > 0.0 && tau_c_s > 0.0 && tau_s > 0.0)) return 0.0;
+  const double x = tau_s / tau_c_s;
+  // The bracket 1 − (3 − 4e^{−x} + e^{−2x}) / (2x) loses its digits to
+  // cancellation for small x: its series there, x²/3 − x³/4 + 7x⁴/60.
+  const double bracket =
+      x < 1e-3 ? x * x * (1.0 / 3.0 - x * (0.25 - x * 7.0 / 60.0))
+               : 1.0 - (-4.0 * std::expm1(-x) + std::expm1(-2.0 * x)) / (2.0 * x);
+  return 2.0 * sigma2 / x * bracket;
+}
+
+double SinusoidAvar(double amplitude2, double period_s, double tau_s) {
+  if (!(amplitude2 > 0.0 && period_s > 0.0 && tau_s > 0.0)) return 0.0;
+  const double x = std::numbers::pi * tau_s / period_s;
+  const double s = std::sin(x);
+  return amplitude2 * s * s * s * s / (x * x);
+}
+
 double AxisNoise::FittedAvar(double tau_s) const {
   double sum = 0.0;
   for (int t = 0; t < kTerms; ++t) sum += fit_avar_coefficients[t] * Basis(t, tau_s);
+  sum += GaussMarkovAvar(fit_gauss_markov.sigma2, fit_gauss_markov.tau_c_s, tau_s);
+  sum += SinusoidAvar(fit_sinusoid.amplitude2, fit_sinusoid.period_s, tau_s);
   return sum;
 }
 
@@ -430,6 +450,8 @@ AxisNoise AnalyseAxis(std::vector<AllanPoint> curve,
                       double phase_points,
                       const NoiseOptions& o) {
   AxisNoise out;
+  out.gauss_markov.modelled = o.model_gauss_markov;
+  out.sinusoid.modelled = o.model_sinusoid;
   // One fit with every term (non-negative: those the curve does not support
   // come out zero or small); then each is reported only where it dominates.
   // Refitting without the terms not seen would push their variance into

@@ -174,6 +174,62 @@ TEST(NoiseJson, ModelCheckAndDisagreeingTermReadBack) {
   EXPECT_THAT(k.text, HasSubstr("fitted from tau = 0.04 s"));
 }
 
+// The Gauss-Markov process and the sinusoid go to the JSON and back with
+// their intervals, regions and fitted curves; a term not seen reads back
+// without figures, and one left out of the model says so.
+TEST(NoiseJson, GaussMarkovAndSinusoidReadBack) {
+  NoiseResult r = Example(true);
+  AxisNoise& ax = r.accel_mps2.axes[0];
+  ax.gauss_markov.status = TermStatus::kMeasured;
+  ax.gauss_markov.sigma = 2e-3;
+  ax.gauss_markov.sigma_lo = 1.8e-3;
+  ax.gauss_markov.sigma_hi = 2.3e-3;
+  ax.gauss_markov.tau_c_s = 0.3;
+  ax.gauss_markov.tau_c_lo_s = 0.25;
+  ax.gauss_markov.tau_c_hi_s = 0.37;
+  ax.gauss_markov.tau_lo_s = 0.2;
+  ax.gauss_markov.tau_hi_s = 2.5;
+  ax.fit_gauss_markov = {4e-6, 0.3};
+  AxisNoise& gz = r.gyro_radps->axes[2];
+  gz.sinusoid.status = TermStatus::kMeasured;
+  gz.sinusoid.amplitude = 3e-4;
+  gz.sinusoid.amplitude_lo = 2.8e-4;
+  gz.sinusoid.amplitude_hi = 3.2e-4;
+  gz.sinusoid.period_s = 2.0;
+  gz.sinusoid.period_lo_s = 1.9;
+  gz.sinusoid.period_hi_s = 2.1;
+  gz.sinusoid.tau_lo_s = 0.4;
+  gz.sinusoid.tau_hi_s = 1.2;
+  gz.fit_sinusoid = {9e-8, 2.0};
+  r.accel_mps2.axes[1].sinusoid.modelled = false;
+  const std::string text = NoiseJson(r, "still.csv", 0.95);
+  EXPECT_THAT(text, HasSubstr("\"sigma_mps2\""));
+  EXPECT_THAT(text, HasSubstr("\"amplitude_radps\""));
+  const NoiseFile back = ParseNoiseJson(text, "test");
+  const GaussMarkovTerm& g = back.result.accel_mps2.axes[0].gauss_markov;
+  EXPECT_EQ(g.status, TermStatus::kMeasured);
+  EXPECT_DOUBLE_EQ(*g.sigma, 2e-3);
+  EXPECT_DOUBLE_EQ(g.tau_c_hi_s, 0.37);
+  EXPECT_DOUBLE_EQ(g.tau_hi_s, 2.5);
+  const SinusoidTerm& s = back.result.gyro_radps->axes[2].sinusoid;
+  EXPECT_EQ(s.status, TermStatus::kMeasured);
+  EXPECT_DOUBLE_EQ(*s.amplitude, 3e-4);
+  EXPECT_DOUBLE_EQ(s.period_lo_s, 1.9);
+  EXPECT_DOUBLE_EQ(s.tau_lo_s, 0.4);
+  // The fitted curve reads back: σ and A are written, their squares kept.
+  const AxisNoise& bx = back.result.accel_mps2.axes[0];
+  EXPECT_NEAR(bx.fit_gauss_markov.sigma2, 4e-6, 1e-18);
+  EXPECT_NEAR(bx.FittedAvar(0.6), ax.FittedAvar(0.6), 1e-12 * ax.FittedAvar(0.6));
+  EXPECT_NEAR(back.result.gyro_radps->axes[2].FittedAvar(0.7),
+              gz.FittedAvar(0.7),
+              1e-12 * gz.FittedAvar(0.7));
+  const SinusoidTerm& none = back.result.accel_mps2.axes[1].sinusoid;
+  EXPECT_EQ(none.status, TermStatus::kNotSeen);
+  EXPECT_FALSE(none.amplitude.has_value());
+  EXPECT_FALSE(none.modelled);
+  EXPECT_TRUE(back.result.accel_mps2.axes[2].sinusoid.modelled);
+}
+
 // The sensor's one figure of how long to record: the longest of the axes
 // where the term was not seen, whichever axis the Kalibr value came from.
 TEST(KalibrYaml, RecordNeededIsTheSensorsOneFigure) {
