@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -37,23 +38,26 @@ inline LiveLogOutcome ParseLive(std::string_view stream,
                                 const LogOptions& options,
                                 const std::vector<std::size_t>& cuts) {
   LiveLogOutcome out;
-  LiveLogParser parser(options, "live");
+  std::unique_ptr<LiveLogParser> parser;
   try {
+    parser = std::make_unique<LiveLogParser>(options, "live");  // options checked
     std::size_t from = 0;
     for (const std::size_t cut : cuts) {
-      parser.Feed(stream.substr(from, cut - from), &out.rows);
-      out.session += parser.TakeSessionText();
+      parser->Feed(stream.substr(from, cut - from), &out.rows);
+      out.session += parser->TakeSessionText();
       from = cut;
     }
-    parser.Feed(stream.substr(from), &out.rows);
-    out.session += parser.TakeSessionText();
-    parser.Finish(&out.rows);
+    parser->Feed(stream.substr(from), &out.rows);
+    out.session += parser->TakeSessionText();
+    parser->Finish(&out.rows);
   } catch (const Error& e) {
     out.error = e.what();
   }
-  out.session += parser.TakeSessionText();
-  out.layout_known = parser.layout_known();
-  out.skipped = parser.skipped_lines();
+  if (parser) {
+    out.session += parser->TakeSessionText();
+    out.layout_known = parser->layout_known();
+    out.skipped = parser->skipped_lines();
+  }
   return out;
 }
 
