@@ -231,6 +231,27 @@ TEST(LiveSource, UdpDatagramsHoldWholeLines) {
               ::testing::ThrowsMessage<Error>(HasSubstr("the stream stopped")));
 }
 
+TEST(LiveSource, UdpOnEveryAddressHearsAnIpv4Sender) {
+  auto source = OpenLiveSource({"udp:0"});
+  const std::string name = source->source();
+  const int port = std::stoi(name.substr(name.rfind(':') + 1));
+  ASSERT_GT(port, 0);
+  const int sender = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(static_cast<std::uint16_t>(port));
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  const std::string lines = Lines(3);
+  ::sendto(sender,
+           lines.data(),
+           lines.size(),
+           0,
+           reinterpret_cast<sockaddr*>(&to),
+           sizeof(to));
+  EXPECT_EQ(Drain(source.get(), lines.size()), lines);
+  ::close(sender);
+}
+
 TEST(LiveSource, UdpPortInUseIsRefused) {
   int port = 0;
   const int taken = Listen(SOCK_DGRAM, &port);
