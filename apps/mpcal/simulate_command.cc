@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "mpcal/error.h"
 #include "mpcal/log_writer.h"
 #include "mpcal/simulate.h"
+#include "realtime_output.h"
 
 namespace mpcal::cli {
 namespace {
@@ -49,6 +51,8 @@ struct SimulateStaticFlags {
   std::optional<double> earth_rate_latitude_deg;
   std::optional<int> trials;
   int digits = 9;
+  bool realtime = false;
+  std::optional<double> speed;
   GravityFlags gravity;
 };
 
@@ -139,9 +143,28 @@ void WriteSession(const SimulatedSession& session,
   }
 }
 
+// At the sensor's pace: the truth first (whole, atomically), then the log
+// line by line as the sensor would give it. False when the reader quit.
+bool WriteSessionAtPace(const SimulatedSession& session, const SimulateStaticFlags& f) {
+  if (!f.truth.empty()) {
+    Calibration truth = session.truth;
+    if (truth.provenance) truth.provenance->mpcal_version = MPCAL_VERSION;
+    WriteCalibrationFile(f.truth, truth);
+  }
+  LogWriteOptions write;
+  write.significant_digits = f.digits;
+  std::ostringstream csv;
+  WriteRecordingCsv(csv, session.recording, write);
+  return WriteAtSensorPace(
+      f.output, csv.str(), session.recording.time_s, f.speed.value_or(1.0));
+}
+
 // The outputs named sensibly, and writable, before anything is simulated.
 void CheckOutputs(const SimulateStaticFlags& f) {
   if (f.output.empty()) throw Error("simulate static: give the output log with -o FILE");
+  if ((f.realtime || f.speed) && f.trials) {
+    throw Error("simulate static: --realtime writes one session; leave out --trials");
+  }
   if (!f.truth.empty() && f.truth == f.output) {
     throw Error(
         fmt::format("simulate static: -o and --truth name the same file '{}'", f.output));
@@ -166,7 +189,12 @@ void RunOne(const SimulateStaticFlags& f,
   const bool to_stdout = f.output == "-";
   const std::string_view units = ToString(options.units);
   const SimulatedSession s = SimulateStatic(options, gravity);
-  WriteSession(s, f.output, f.truth, f.digits);
+  if (f.realtime || f.speed) {
+    // The reader quit (a record session that has what it needs): no summary.
+    if (!WriteSessionAtPace(s, f)) return;
+  } else {
+    WriteSession(s, f.output, f.truth, f.digits);
+  }
   const double duration = s.recording.size() / s.rate_hz;
   fmt::print(
       summary,
@@ -439,6 +467,19 @@ void AddSimulateStaticCommand(CLI::App& simulate) {
       ->capture_default_str()
       ->check(CLI::Range(0, 17))
       ->group("Sensor");
+  app->add_flag("--realtime",
+                f->realtime,
+                "Write the log at the pace of the sensor (to standard output or a file "
+                "that grows line by line), so that a live session can be tried without "
+                "hardware; when the reader quits (a closed pipe), stop quietly with exit "
+                "status 0")
+      ->group("Output");
+  app->add_option("--speed",
+                  f->speed,
+                  "With --realtime (implied): X times the sensor's pace (20: a 4-minute "
+                  "session in 12 s)")
+      ->check(PositiveNumber)
+      ->group("Output");
   AddGravityOptions(*app, f->gravity);
   app->footer(
       "Examples:\n"
@@ -452,7 +493,10 @@ void AddSimulateStaticCommand(CLI::App& simulate) {
       "imu_truth.json\n"
       "  mpcal simulate static --preset mti-g --bias-drift 2e-4 -o warm.csv --truth "
       "warm.json\n"
-      "    (a bias warming up by 2e-4 m/s2 per second; calibrate fits the drift)");
+      "    (a bias warming up by 2e-4 m/s2 per second; calibrate fits the drift)\n"
+      "  mpcal simulate static --preset mti-g --realtime --speed 20 -o - | mpcal record "
+      "-\n"
+      "    (a live session without hardware, 20 times faster than real time)");
   app->callback([f] { Run(*f); });
 }
 

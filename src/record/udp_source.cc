@@ -59,51 +59,71 @@ std::string BoundPort(int fd) {
   return std::to_string(ntohs(reinterpret_cast<const sockaddr_in*>(&addr)->sin_port));
 }
 
+// Binds the first address `host` (empty: every address of `family`) gives
+// for `port`; the socket, or -1 with `*error_number` set.
+int BindFirst(const std::string& host,
+              const std::string& port,
+              int family,
+              int* error_number) {
+  addrinfo hints{};
+  hints.ai_family = family;
+  hints.ai_socktype = SOCK_DGRAM;
+  hints.ai_flags = AI_PASSIVE;
+  addrinfo* found = nullptr;
+  const int gai =
+      ::getaddrinfo(host.empty() ? nullptr : host.c_str(), port.c_str(), &hints, &found);
+  if (gai != 0) {
+    *error_number = -gai;  // negative: a resolver error (gai_strerror)
+    return -1;
+  }
+  int bound = -1;
+  for (const addrinfo* a = found; a != nullptr && bound < 0; a = a->ai_next) {
+    const int fd = ::socket(a->ai_family, a->ai_socktype | SOCK_CLOEXEC, a->ai_protocol);
+    if (fd < 0) {
+      *error_number = errno;
+      continue;
+    }
+    if (a->ai_family == AF_INET6 && host.empty()) {
+      const int off = 0;  // IPv4 senders too
+      ::setsockopt(fd, IPPROTO_IPV6, IPV6_V6ONLY, &off, sizeof(off));
+    }
+    if (::bind(fd, a->ai_addr, a->ai_addrlen) == 0) {
+      bound = fd;
+    } else {
+      *error_number = errno;
+      ::close(fd);
+    }
+  }
+  ::freeaddrinfo(found);
+  return bound;
+}
+
 }  // namespace
 
 std::unique_ptr<LiveSource> OpenUdp(const LiveSourceOptions& options) {
   const std::string& spec = options.spec;
   const HostPort hp = SplitHostPort(spec, spec.substr(4), /*allow_any_port=*/true);
-  addrinfo hints{};
-  hints.ai_family = hp.host.empty() ? AF_INET6 : AF_UNSPEC;
-  hints.ai_socktype = SOCK_DGRAM;
-  hints.ai_flags = AI_PASSIVE;
-  addrinfo* found = nullptr;
-  int gai = ::getaddrinfo(
-      hp.host.empty() ? nullptr : hp.host.c_str(), hp.port.c_str(), &hints, &found);
-  if (gai != 0 && hp.host.empty()) {  // no IPv6: every IPv4 address
-    hints.ai_family = AF_INET;
-    gai = ::getaddrinfo(nullptr, hp.port.c_str(), &hints, &found);
+  int error_number = 0;
+  // Every address: IPv6 and IPv4 on one socket, or IPv4 alone where the
+  // system has no IPv6.
+  int fd =
+      BindFirst(hp.host, hp.port, hp.host.empty() ? AF_INET6 : AF_UNSPEC, &error_number);
+  if (fd < 0 && hp.host.empty() && error_number != EADDRINUSE && error_number != EACCES) {
+    fd = BindFirst(hp.host, hp.port, AF_INET, &error_number);
   }
-  if (gai != 0) {
+  if (fd >= 0) {
+    const std::string name =
+        "udp:" + (hp.host.empty() ? "" : hp.host + ":") + BoundPort(fd);
+    return std::make_unique<UdpSource>(name, fd, options.timeout_s);
+  }
+  if (error_number < 0) {
     throw Error(ErrorKind::kIo,
                 fmt::format("{}: cannot listen on '{}' ({}); give an address of this "
                             "machine, or none",
                             spec,
                             hp.host,
-                            ::gai_strerror(gai)));
+                            ::gai_strerror(-error_number)));
   }
-  int error_number = 0;
-  for (const addrinfo* a = found; a != nullptr; a = a->ai_next) {
-    const int fd = ::socket(a->ai_family, a->ai_socktype | SOCK_CLOEXEC, a->ai_protocol);
-    if (fd < 0) {
-      error_number = errno;
-      continue;
-    }
-    if (a->ai_family == AF_INET6 && hp.host.empty()) {
-      const int off = 0;  // IPv4 senders too
-      ::setsockopt(fd, IPPROTO_IPV6, IPV6_V6ONLY, &off, sizeof(off));
-    }
-    if (::bind(fd, a->ai_addr, a->ai_addrlen) == 0) {
-      ::freeaddrinfo(found);
-      const std::string name =
-          "udp:" + (hp.host.empty() ? "" : hp.host + ":") + BoundPort(fd);
-      return std::make_unique<UdpSource>(name, fd, options.timeout_s);
-    }
-    error_number = errno;
-    ::close(fd);
-  }
-  ::freeaddrinfo(found);
   if (error_number == EADDRINUSE) {
     throw Error(ErrorKind::kIo,
                 fmt::format("{}: port {} is in use by another program; stop it, or "

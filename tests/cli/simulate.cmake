@@ -65,3 +65,14 @@ add_test(NAME cli.simulate_bias_drift_found
 set_tests_properties(cli.simulate_bias_drift_found PROPERTIES LABELS cli)
 mpcal_cli_test(simulate_bad_bias_drift EXIT 1 MATCH "--bias-drift takes one value or three"
   ABSENT s.csv ARGS simulate static --bias-drift 1e-5,2e-5 -o s.csv)
+
+# At the sensor's pace (`--realtime`, `--speed`): the same log, never ahead
+# of its time stamps, and quiet (status 0) when the reader of the pipe quits.
+add_test(NAME cli.simulate_realtime
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/simulate_realtime.sh $<TARGET_FILE:mpcal_cli>
+          ${CMAKE_CURRENT_BINARY_DIR}/simulate_realtime)
+set_tests_properties(cli.simulate_realtime PROPERTIES LABELS cli)
+mpcal_cli_test(simulate_realtime_with_trials EXIT 1
+  MATCH "^mpcal: error: simulate static: --realtime writes one session; leave out --trials$"
+  ABSENT s_1.csv
+  ARGS simulate static --realtime --trials 2 -o s.csv)

@@ -1,7 +1,10 @@
 // LiveLogParser against ReadLog, the reader it must agree with: the same
 // text fed in any pieces gives ReadLog's rows, and the session text it hands
 // over reads back (with ReadLog) to the same rows.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <numbers>
 #include <string>
 
@@ -9,6 +12,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "../../fuzz/live_log_input.h"
 #include "mpcal/error.h"
 #include "mpcal/live_source.h"
 #include "mpcal/log_reader.h"
@@ -257,6 +261,25 @@ TEST(LiveLogParser, AShortStreamIsParsedAtItsEnd) {
   Recording none;
   EXPECT_THAT([&] { empty.Finish(&none); },
               ::testing::ThrowsMessage<Error>(HasSubstr("'live' is empty")));
+}
+
+// The fuzz target's seed corpus (tests/fuzz/live_log/) replayed: every
+// stream parses the same in any pieces (the sanitizer build runs this too).
+TEST(LiveLogParser, TheFuzzCorpusParsesTheSameInAnyPieces) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& e :
+       std::filesystem::directory_iterator(testing::TestDataPath("../fuzz/live_log"))) {
+    if (e.is_regular_file()) files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  ASSERT_GE(files.size(), 5u);
+  for (const auto& file : files) {
+    const std::string bytes = testing::ReadFile(file.string());
+    EXPECT_EQ(fuzz::CheckLiveLogInput(reinterpret_cast<const std::uint8_t*>(bytes.data()),
+                                      bytes.size()),
+              "")
+        << file.filename();
+  }
 }
 
 }  // namespace

@@ -10,6 +10,8 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <thread>
 
@@ -20,6 +22,7 @@
 #include "mpcal/error.h"
 #include "mpcal/live_source.h"
 #include "mpcal/log_reader.h"
+#include "test_util.h"
 
 namespace mpcal {
 namespace {
@@ -104,6 +107,55 @@ TEST(LiveSource, StandardInputThroughAPipeToItsEnd) {
   std::string more;
   EXPECT_FALSE(source->Read(&more, 0.01));
   EXPECT_TRUE(more.empty());
+}
+
+// The whole chain a user tries first: `mpcal simulate static --realtime`
+// into standard input, parsed as it arrives, written as the session file:
+// the rows are those ReadLog reads from the file simulate writes at once,
+// and from the session file.
+TEST(LiveSource, ASimulatedSessionAtItsPaceThroughStandardInput) {
+  testing::ScratchDir dir;
+  const std::string session =
+      "simulate static --preset mti-g --seed 5 --positions 6 --dwell 2 --turn 1 --rest 1 "
+      "--gyro";
+  ASSERT_EQ(
+      std::system(
+          fmt::format(
+              "'{}' {} -o '{}' >/dev/null", MPCAL_BINARY, session, dir.Path("whole.csv"))
+              .c_str()),
+      0);
+  const Recording whole = ReadLog(dir.Path("whole.csv"), {});
+  std::FILE* pipe = ::popen(
+      fmt::format("'{}' {} --speed 20 -o - 2>/dev/null", MPCAL_BINARY, session).c_str(),
+      "r");
+  ASSERT_NE(pipe, nullptr);
+  const int saved = ::dup(STDIN_FILENO);
+  ::dup2(::fileno(pipe), STDIN_FILENO);
+  Recording rows;
+  {
+    auto source = OpenLiveSource({"-"});
+    LiveLogParser parser({}, source->source());
+    SessionWriter writer(dir.Path("session.csv"), "-");
+    std::string bytes;
+    while (source->Read(&bytes, 0.05)) {
+      parser.Feed(bytes, &rows);
+      bytes.clear();
+      writer.Write(parser.TakeSessionText());
+    }
+    parser.Finish(&rows);
+    writer.Write(parser.TakeSessionText());
+    EXPECT_TRUE(writer.Close());
+  }
+  ::dup2(saved, STDIN_FILENO);
+  ::close(saved);
+  EXPECT_EQ(::pclose(pipe), 0);
+  ASSERT_EQ(rows.size(), whole.size());
+  ASSERT_EQ(rows.gyro_radps.size(), whole.size());
+  EXPECT_EQ(rows.time_s, whole.time_s);
+  EXPECT_EQ(rows.accel, whole.accel);
+  EXPECT_EQ(rows.gyro_radps, whole.gyro_radps);
+  EXPECT_EQ(testing::ReadFile(dir.Path("session.csv")),
+            testing::ReadFile(dir.Path("whole.csv")));
 }
 
 TEST(LiveSource, AStreamThatStopsIsAnErrorWithinTheTimeout) {
@@ -229,6 +281,27 @@ TEST(LiveSource, UdpDatagramsHoldWholeLines) {
   auto silent = OpenLiveSource(quiet);
   EXPECT_THAT([&] { Drain(silent.get()); },
               ::testing::ThrowsMessage<Error>(HasSubstr("the stream stopped")));
+}
+
+TEST(LiveSource, UdpOnEveryAddressHearsAnIpv4Sender) {
+  auto source = OpenLiveSource({"udp:0"});
+  const std::string name = source->source();
+  const int port = std::stoi(name.substr(name.rfind(':') + 1));
+  ASSERT_GT(port, 0);
+  const int sender = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(static_cast<std::uint16_t>(port));
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  const std::string lines = Lines(3);
+  ::sendto(sender,
+           lines.data(),
+           lines.size(),
+           0,
+           reinterpret_cast<sockaddr*>(&to),
+           sizeof(to));
+  EXPECT_EQ(Drain(source.get(), lines.size()), lines);
+  ::close(sender);
 }
 
 TEST(LiveSource, UdpPortInUseIsRefused) {
