@@ -63,12 +63,15 @@ inline void ReadBagChecked(const std::string& path,
 
 /// Walks the recording at `path` as `apply` does (RewriteImuMessages, every
 /// IMU message edited) and reads what it writes back, as `apply` does before
-/// it keeps it.
+/// it keeps it: the writer copies what a reader reads, so every message it
+/// edited, and no other, must come back, with no error. A copy that reads
+/// otherwise is a finding (`apply` would refuse it, but only after writing it).
 inline void RewriteChecked(const std::string& path) {
   std::stringstream rewritten;
+  mpcal::BagRewriteResult written;
   try {
     std::vector<std::string> warnings;
-    mpcal::RewriteImuMessages(
+    written = mpcal::RewriteImuMessages(
         path,
         rewritten,
         "/imu/data",
@@ -79,22 +82,24 @@ inline void RewriteChecked(const std::string& path) {
   }
   const std::string bytes = rewritten.str();
   // The one in-memory file takes the output: the input has been read whole.
-  // A damaged input's copy may read back otherwise than it was written
-  // (records the two readings take differently); `apply` reads it back and
-  // refuses it then (ApplyCalibrationToBag), so that is an outcome, not a
-  // finding; a crash or a sanitizer report on the way is.
   const std::string out = WriteMemoryFile(bytes.data(), bytes.size());
   std::vector<std::string> warnings;
+  std::int64_t read_back = 0;
+  bool read = true;
   try {
     mpcal::ReadImuMessages(
         out,
         "/imu/data",
-        [](std::span<const mpcal::ImuMessage> batch) {
+        [&](std::span<const mpcal::ImuMessage> batch) {
           Check(!batch.empty(), "a batch holds messages");
+          read_back += static_cast<std::int64_t>(batch.size());
         },
         warnings);
   } catch (const mpcal::Error&) {
+    read = false;
   }
+  Check(read, "the copy reads back without an error");
+  Check(read_back == written.imu_messages, "the copy reads back every edited message");
 }
 
 }  // namespace mpcal::fuzz

@@ -66,14 +66,34 @@ class McapRewriter {
   const std::vector<BagTopic>& topics() const { return topics_; }
   const std::set<std::string>& compressions() const { return compressions_; }
 
+  // The specification (spec/index.md, Schema and Channel) asks that the
+  // records of one id be identical and come before what refers to them. The
+  // copy's summary lists each id once, and a reader that takes the channels
+  // from there would read a message the walk copied unedited, before the
+  // channel's record said its topic, as an IMU message (or, for an id given
+  // twice, as the other topic's): such a file is refused, not copied.
   void Schema(std::string_view raw, std::string_view body) {
     const mcap::Schema s = ParseSchema(body);
     schema_names_.try_emplace(s.id, s.name);
-    schemas_.try_emplace(s.id, raw);
+    const auto [first, fresh] = schemas_.try_emplace(s.id, raw);
+    if (!fresh && first->second != raw) {
+      throw DataError("schema " + std::to_string(s.id) +
+                      " is given twice, by records that differ");
+    }
   }
 
   void Channel(std::string_view raw, std::string_view body) {
     const mcap::Channel c = ParseChannel(body);
+    const auto known = channels_.find(c.id);
+    if (known != channels_.end() && known->second != raw) {
+      throw DataError("channel " + std::to_string(c.id) +
+                      " is given twice, by records that differ");
+    }
+    if (c.topic == topic_ && undefined_.count(c.id) != 0) {
+      throw DataError("a message of channel " + std::to_string(c.id) +
+                      " comes before the channel's record (topic '" + c.topic +
+                      "'), which the MCAP specification puts first");
+    }
     const auto schema = schema_names_.find(c.schema_id);
     const std::string type =
         schema != schema_names_.end() ? schema->second : std::string("(no schema)");
@@ -103,6 +123,7 @@ class McapRewriter {
     end_ns_ = std::max(end_ns_, m.log_time_ns);
     const auto imu = imu_.find(m.channel_id);
     if (imu == imu_.end()) {
+      if (channels_.count(m.channel_id) == 0) undefined_.insert(m.channel_id);
       ++result_.other_messages;
       return;
     }
@@ -239,6 +260,7 @@ class McapRewriter {
   std::map<std::uint16_t, std::string> channels_;  // id -> the record's bytes
   std::vector<BagTopic> topics_;
   std::map<std::uint16_t, bool> imu_;  // channel id -> CDR (else ROS 1)
+  std::set<std::uint16_t> undefined_;  // ids with a message before any record
   std::map<std::uint16_t, std::uint64_t> channel_counts_;
   std::string chunk_indexes_;
   std::uint64_t start_ns_ = 0, end_ns_ = 0;

@@ -89,8 +89,26 @@ class Ros1Rewriter {
                const ImuCovariances& covariances)
       : file_(file), out_(out), topic_(topic), edit_(edit), covariances_(covariances) {}
 
+  // A connection's records must agree (topic, type, md5sum) and come before
+  // its messages, as rosbag writes them: the copy's index lists each
+  // connection once, and a reader that takes it from there would read a
+  // message the walk copied unedited, before the record said its topic, as
+  // an IMU message (or, for an id given two topics, the other topic's).
   void Connection(std::string_view raw, const Record& r, std::string_view data) {
     const ros1::Connection c = ros1::ParseConnection(r, data);
+    const auto [known, fresh] = defined_.try_emplace(c.id, c);
+    const ros1::Connection& first = known->second;
+    if (!fresh &&
+        (first.topic != c.topic || first.type != c.type || first.md5sum != c.md5sum)) {
+      throw DataError("connection " + std::to_string(c.id) + " is given twice, as '" +
+                      first.topic + "' (" + first.type + ") and as '" + c.topic + "' (" +
+                      c.type + ")");
+    }
+    if (c.topic == topic_ && undefined_.count(c.id) != 0) {
+      throw DataError("a message of connection " + std::to_string(c.id) +
+                      " comes before the connection's record (topic '" + c.topic +
+                      "'), which rosbag writes first");
+    }
     if (c.topic == topic_) {
       if (c.type != kRos1ImuType || c.md5sum != kRos1ImuMd5) {
         throw Error(ErrorKind::kInput,
@@ -139,6 +157,7 @@ class Ros1Rewriter {
           contents.replace(m.data_offset, m.data_length, data);
           ++result_.imu_messages;
         } else {
+          if (defined_.count(conn) == 0) undefined_.insert(conn);
           ++result_.other_messages;
         }
       }
@@ -203,6 +222,8 @@ class Ros1Rewriter {
   std::map<std::uint32_t, std::string> connections_;  // id -> the record's bytes
   std::vector<BagTopic> topics_;
   std::set<std::uint32_t> imu_;
+  std::map<std::uint32_t, ros1::Connection> defined_;  // id -> its first record
+  std::set<std::uint32_t> undefined_;  // ids with a message before any record
   std::vector<ChunkInfo> chunks_;
   std::set<std::string> compressions_;
   BagRewriteResult result_;

@@ -191,6 +191,22 @@ TEST(RewriteImuMessages, RefusesATopicOfAnotherTypeOrAbsent) {
               HasSubstr("a ROS 2 bag is read but not written"));
 }
 
+// Damaged recordings whose copy would read otherwise (its index or summary
+// lists each connection once, so a message copied unedited before its
+// record would read as an IMU message, and an id given two topics as one of
+// them) are refused by the writer, in one line naming the record.
+TEST(RewriteImuMessages, RefusesARecordingWhoseCopyWouldReadOtherwise) {
+  EXPECT_THAT(ErrorOf(Fixture("connection_after_message.bag"), "/imu/data"),
+              HasSubstr("connection_after_message.bag: chunk at byte 4117: a message of "
+                        "connection 0 comes before the connection's record"));
+  EXPECT_THAT(ErrorOf(Fixture("connection_given_twice.bag"), "/imu/data"),
+              HasSubstr("connection 0 is given twice, as '/chatter' (std_msgs/String) "
+                        "and as '/imu/data' (sensor_msgs/Imu)"));
+  EXPECT_THAT(ErrorOf(Fixture("damaged_reads_back_otherwise.mcap"), "/imu/data"),
+              HasSubstr("record at byte 251: a message of channel 0 comes before the "
+                        "channel's record (topic '/imu/data')"));
+}
+
 // A stream that cannot seek back (a pipe) cannot take a ROS 1 bag, whose
 // header is completed at the end: refused before anything is written.
 TEST(RewriteImuMessages, Ros1NeedsAStreamThatSeeks) {

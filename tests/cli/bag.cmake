@@ -90,10 +90,23 @@ mpcal_cli_test(apply_noise_with_a_text_log EXIT 2
   ABSENT out.csv
   ARGS apply ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags}/session.csv -o out.csv --noise ${_bags}/session.csv)
 
-# A damaged MCAP file (found by the mcap_bag fuzz target) whose copy reads back
-# otherwise than it was written: apply refuses it and leaves no output.
-mpcal_cli_test(apply_bag_damaged_does_not_read_back EXIT 1
-  MATCH "^mpcal: error: .*damaged_reads_back_otherwise\\.mcap: the corrected recording does not read back whole"
+# Damaged recordings whose copy would read otherwise than it was written
+# (an IMU message before its channel's or connection's record, which the
+# copy's summary or index would make readable; a connection given two
+# topics): apply refuses them in one line and writes nothing. The MCAP file
+# was found by the mcap_bag fuzz target; the bags are make_damaged.py's.
+mpcal_cli_test(apply_bag_damaged_channel_after_message EXIT 1
+  MATCH "^mpcal: error: .*damaged_reads_back_otherwise\\.mcap: record at byte 251: a message of channel 0 comes before the channel's record \\(topic '/imu/data'\\)"
   ABSENT out.mcap
   ARGS apply ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags}/damaged_reads_back_otherwise.mcap
        -o out.mcap)
+mpcal_cli_test(apply_bag_damaged_connection_after_message EXIT 1
+  MATCH "^mpcal: error: .*connection_after_message\\.bag: chunk at byte 4117: a message of connection 0 comes before the connection's record"
+  ABSENT out.bag
+  ARGS apply ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags}/connection_after_message.bag
+       -o out.bag)
+mpcal_cli_test(apply_bag_damaged_connection_given_twice EXIT 1
+  MATCH "^mpcal: error: .*connection_given_twice\\.bag: chunk at byte [0-9]+: connection 0 is given twice, as '/chatter' \\(std_msgs/String\\) and as '/imu/data' \\(sensor_msgs/Imu\\)"
+  ABSENT out.bag
+  ARGS apply ${MPCAL_TEST_DATA}/imu_trial_1.json ${_bags}/connection_given_twice.bag
+       -o out.bag)
