@@ -1,6 +1,9 @@
 #include "arrays.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -38,6 +41,31 @@ std::vector<Eigen::Vector3d> ToVectors(const Rows& rows) {
   if (!out.empty()) std::copy_n(rows.data(), 3 * out.size(), out.front().data());
   return out;
 }
+
+namespace {
+
+// `count` doubles of `in` copied to `out`; false when one is NaN or
+// infinite (all exponent bits set). Block by block, so that each block is
+// checked while it is in the cache the copy brought it to; the check is on
+// the bits, which the compiler vectorises (std::isfinite it does not).
+bool CopyFinite(const double* in, std::size_t count, double* out) {
+  constexpr std::size_t kBlock = 4096;
+  constexpr std::uint64_t kExponent = 0x7ff0000000000000ULL;
+  for (std::size_t begin = 0; begin < count; begin += kBlock) {
+    const std::size_t n = std::min(kBlock, count - begin);
+    std::memcpy(out + begin, in + begin, n * sizeof(double));
+    std::uint64_t not_finite = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      std::uint64_t bits = 0;
+      std::memcpy(&bits, out + begin + i, sizeof bits);
+      not_finite |= static_cast<std::uint64_t>((bits & kExponent) == kExponent);
+    }
+    if (not_finite != 0) return false;
+  }
+  return true;
+}
+
+}  // namespace
 
 AccelUnits AccelUnitsArgument(const std::string& name, const char* argument) {
   const auto units = ParseAccelUnits(name);
@@ -87,6 +115,49 @@ Recording ToRecording(const Rows& t,
     }
   }
   return recording;
+}
+
+CheckedRecording ToRecordingChecked(const Rows& t,
+                                    const Rows& accel,
+                                    const py::object& gyro,
+                                    const std::string& units,
+                                    const std::string& gyro_units) {
+  CheckedRecording out;
+  Recording& recording = out.recording;
+  recording.source = "<arrays>";
+  recording.units = AccelUnitsArgument(units, "units");
+  std::optional<Rows> gyro_rows;
+  GyroUnits given = GyroUnits::kRadps;
+  if (!gyro.is_none()) {
+    given = GyroUnitsArgument(gyro_units, "gyro_units");
+    gyro_rows = gyro.cast<Rows>();
+  }
+  const auto n = static_cast<std::size_t>(t.shape(0));
+  {
+    const py::gil_scoped_release unlocked;
+    recording.time_s.resize(n);
+    recording.accel.resize(n);
+    if (!CopyFinite(t.data(), n, recording.time_s.data())) {
+      out.not_finite = "t";
+    } else if (n > 0 && !CopyFinite(accel.data(), 3 * n, recording.accel.front().data())) {
+      out.not_finite = "accel";
+    } else if (gyro_rows) {
+      recording.gyro_radps.resize(n);
+      if (n > 0 &&
+          !CopyFinite(gyro_rows->data(), 3 * n, recording.gyro_radps.front().data())) {
+        out.not_finite = "gyro";
+      }
+    }
+  }
+  if (gyro_rows && out.not_finite.empty()) {
+    recording.gyro_log_units = given;
+    recording.gyro_units =
+        given == GyroUnits::kCounts ? GyroUnits::kCounts : GyroUnits::kRadps;
+    if (const auto radps = FixedRadpsPerUnit(given); radps && *radps != 1.0) {
+      for (Eigen::Vector3d& w : recording.gyro_radps) w *= *radps;
+    }
+  }
+  return out;
 }
 
 }  // namespace mpcal::python
