@@ -60,7 +60,8 @@ py::list Notes(const std::vector<ExportNote>& notes) {
 
 const ExportFormat& FormatNamed(const std::string& name, bool writing) {
   const ExportFormat* format = FindExportFormat(name);
-  if (format == nullptr || (writing ? format->write == nullptr : format->read == nullptr)) {
+  if (format == nullptr ||
+      (writing ? format->write == nullptr : format->read == nullptr)) {
     std::vector<std::string> names;
     for (const ExportFormat& f : ExportFormats()) {
       if ((writing ? f.write != nullptr : f.read != nullptr)) names.emplace_back(f.name);
@@ -145,11 +146,11 @@ py::tuple Import(const std::string& format_name,
     std::vector<ImportFile> files;
     files.reserve(paths.size());
     for (const std::string& path : paths) {
-      files.push_back(ImportFile{
-          path,
-          ReadTextInput(path,
-                        kMaxCalibrationFileBytes,
-                        fmt::format("calibration file of {}", format.file))});
+      files.push_back(
+          ImportFile{path,
+                     ReadTextInput(path,
+                                   kMaxCalibrationFileBytes,
+                                   fmt::format("calibration file of {}", format.file))});
     }
     imported = mpcal::Import(format, files, options);
   }

@@ -181,8 +181,10 @@ py::list CalibrateFindings(const CalibrateResult& result) {
         k < warnings.size() ? warnings[k] : result.solve.warnings.at(j);
     const bool coverage = n.kind == SolveNoteKind::kPoorlyDetermined ||
                           n.kind == SolveNoteKind::kNoRedundancy;
-    out.append(
-        FindingOf(SolveKind(n.kind), message, coverage ? SeeCoverage() : Advice{}, SolveFigures(n)));
+    out.append(FindingOf(SolveKind(n.kind),
+                         message,
+                         coverage ? SeeCoverage() : Advice{},
+                         SolveFigures(n)));
   }
   // The gyroscope that could not be calibrated at all (its error's words).
   for (; k < warnings.size(); ++k) {

@@ -243,9 +243,9 @@ CalibrateOptions CalibrateOptionsFrom(const py::dict& o, const py::object& gravi
 
 // (calibration, findings).
 py::tuple CalibrateShared(std::shared_ptr<const Recording> recording,
-                            const py::object& gravity,
-                            const py::dict& options,
-                            const std::string& provenance) {
+                          const py::object& gravity,
+                          const py::dict& options,
+                          const std::string& provenance) {
   const CalibrateOptions c = CalibrateOptionsFrom(options, gravity);
   if (c.counts_per_g > 0.0 && recording->units != AccelUnits::kCounts) {
     throw Error(ErrorKind::kOption,

@@ -16,7 +16,12 @@ are, and others are checked and copied.
 
 Bad input raises :class:`mpcal.Error` (a ValueError) with ``kind``,
 ``advice`` (the keyword arguments the message speaks of) and ``figures``;
-findings that do not stop the work are issued as :class:`MpcalWarning`.
+findings that do not stop the work are :class:`Finding` objects (a
+:class:`FindingKind`, the figures in SI units, the keyword arguments that
+would change them) in the results' ``findings``, and are issued as
+:class:`MpcalWarning` with the finding attached. :func:`export` writes
+other tools' files (Kalibr, OpenVINS, imu_tk, ...) as ``mpcal export``
+does; :func:`import_calibration` reads theirs.
 """
 
 import json

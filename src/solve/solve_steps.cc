@@ -58,7 +58,8 @@ bool TryExclude(std::span<const PositionObservation> positions,
     refit->Run();
   } catch (const Error&) {
     result.used[k] = true;
-    result.notes.push_back(OutlierNote(SolveNoteKind::kOutlierKept, positions[k], k, own_z));
+    result.notes.push_back(
+        OutlierNote(SolveNoteKind::kOutlierKept, positions[k], k, own_z));
     result.warnings.push_back(fmt::format(
         "position {} ({:.1f}-{:.1f} s) fits badly ({:.1f} times its noise) but cannot "
         "be excluded: no other position determines the same parameters",
@@ -68,7 +69,8 @@ bool TryExclude(std::span<const PositionObservation> positions,
         std::abs(own_z)));
     return false;
   }
-  result.notes.push_back(OutlierNote(SolveNoteKind::kOutlierExcluded, positions[k], k, own_z));
+  result.notes.push_back(
+      OutlierNote(SolveNoteKind::kOutlierExcluded, positions[k], k, own_z));
   result.warnings.push_back(
       fmt::format("position {} ({:.1f}-{:.1f} s) excluded as an outlier: its residual "
                   "is {:.1f} times "
