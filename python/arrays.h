@@ -25,6 +25,22 @@ py::array ViewOf(const double* values, std::size_t rows, int columns, py::handle
 /// The rows of an N×3 array as the library holds them (one copy).
 std::vector<Eigen::Vector3d> ToVectors(const Rows& rows);
 
+/// The arrays of calibrate, detect and noise, shape and dtype checked by
+/// mpcal/__init__.py but not their values: copied into a Recording with
+/// every value checked finite in the same pass, without the GIL (one read
+/// of the caller's memory, not a check and then a copy).
+struct CheckedRecording {
+  Recording recording;
+  /// The argument ("t", "accel", "gyro") holding a value that is NaN or
+  /// infinite; empty when all are finite (then `recording` holds the rows).
+  std::string not_finite;
+};
+CheckedRecording ToRecordingChecked(const Rows& t,
+                                    const Rows& accel,
+                                    const py::object& gyro,
+                                    const std::string& units,
+                                    const std::string& gyro_units);
+
 /// A Recording from arrays (t: N seconds; accel: N×3 in `units`; gyro: N×3
 /// or None, in `gyro_units`: deg/s converted to rad/s as the log reader
 /// does, counts kept).

@@ -9,6 +9,7 @@
 
 #include "arrays.h"
 #include "errors.h"
+#include "findings.h"
 #include "interrupt.h"
 #include "mpcal/calibrate.h"
 #include "mpcal/coverage.h"
@@ -29,17 +30,6 @@ std::string OutcomeName(DetectOutcome kind) {
       return "all_clipped";
   }
   return "found";
-}
-
-py::dict Finding(const std::string& kind,
-                 const std::string& sentence,
-                 const Advice& advice) {
-  py::dict d;
-  d["kind"] = kind;
-  d["message"] = sentence;
-  d["advice"] = AdviceSettings(advice);
-  d["stage"] = StageOf(advice);
-  return d;
 }
 
 py::dict Detect(const Rows& t,
@@ -76,15 +66,21 @@ py::dict Detect(const Rows& t,
   // the outcome and the findings' advice as facts beside its sentences.
   py::dict d = py::module_::import("json").attr("loads")(DetectionReportJson(
       detection, coverage, coverage_options, "<arrays>", nullptr, {}));
-  d["outcome"] = Finding(OutcomeName(detection.finding.kind),
-                         Describe(detection.finding),
-                         detection.finding.advice);
+  const DetectFinding& found = detection.finding;
+  py::dict figures;
+  figures["span_s"] = found.span_s;
+  figures["longest_still_s"] = found.longest_still_s;
+  figures["quiet_level"] = found.quiet_level;
+  figures["quiet_g"] = found.quiet_g;
+  figures["threshold"] = found.threshold;
+  figures["threshold_capped"] = found.threshold_capped;
+  figures["dropped_short"] = found.dropped_short;
+  figures["dropped_clipped"] = found.dropped_clipped;
+  d["outcome"] = FindingOf(
+      OutcomeName(found.kind), Describe(found), found.advice, std::move(figures));
   py::list notes;
   for (const DetectNote& n : detection.notes) {
-    notes.append(Finding(
-        n.kind == DetectNoteKind::kClippedPosition ? "clipped_position" : "not_still",
-        Describe(n),
-        n.advice));
+    notes.append(DetectNoteFinding(n, Describe(n)));
   }
   d["findings"] = notes;
   return d;

@@ -116,9 +116,9 @@ std::string_view KeywordOf(Option option) {
     case Option::kLogRecordingTime:
       return "time";
     case Option::kAccelTopic:
-      return "topic";
+      return "accel_topic";
     case Option::kGyroTopic:
-      return "";  // read_log takes one topic: two-topic bags are the command's
+      return "gyro_topic";
     case Option::kGyroLog:
       return "gyro_log";
     case Option::kGyroLogColumns:

@@ -15,6 +15,8 @@
 #include "arrays.h"
 #include "detect.h"
 #include "errors.h"
+#include "export.h"
+#include "findings.h"
 #include "interrupt.h"
 #include "mpcal/apply.h"
 #include "mpcal/atomic_file.h"
@@ -82,26 +84,77 @@ py::dict ReadLogDefaults() {
   d["time"] = std::string(ToString(log.recording_time));
   d["gyro_log"] = "";
   d["gyro_columns"] = "";
+  d["accel_topic"] = "";
+  d["gyro_topic"] = "";
   return d;
 }
 
+// What may make a two-stream recording wrong (MergeGyroLog's findings), in
+// words.
+std::string DescribeStreams(StreamFinding finding,
+                            const StreamMerge& m,
+                            const std::string& accel,
+                            const std::string& gyro) {
+  if (finding == StreamFinding::kSpansDiffer) {
+    return fmt::format(
+        "{} spans {:.3f} to {:.3f} s but {} spans {:.3f} to {:.3f} s: one stream is "
+        "much shorter, or their clocks disagree; only the overlap is calibrated",
+        accel,
+        m.accel_first_s,
+        m.accel_last_s,
+        gyro,
+        m.gyro_first_s,
+        m.gyro_last_s);
+  }
+  return fmt::format(
+      "{} has a gap of {:.3f} s at {:.3f} s ({:.0f} of its periods): the rates across "
+      "it are interpolated, so a turn made during it is not measured",
+      gyro,
+      m.gyro_gap_s,
+      m.gyro_gap_at_s,
+      m.gyro_gap_s * m.gyro_rate_hz);
+}
+
+// The log at `path`; the gyroscope from a log of its own (gyro_log) or a
+// topic of its own (gyro_topic, in gyro_log or in `path`), put on the
+// accelerometer's rows as `mpcal calibrate --gyro-log/--gyro-topic` does.
 Recording ReadLogFrom(const std::string& path, const py::dict& options) {
-  const LogOptions log = LogOptionsFrom(options);
+  LogOptions log = LogOptionsFrom(options);
   const auto gyro_log = Get<std::string>(options, "gyro_log");
   const auto gyro_columns = Get<std::string>(options, "gyro_columns");
-  return Interruptible([path, log, gyro_log, gyro_columns] {
+  const auto accel_topic = Get<std::string>(options, "accel_topic");
+  const auto gyro_topic = Get<std::string>(options, "gyro_topic");
+  if (!accel_topic.empty()) {
+    if (!log.topic.empty()) {
+      throw Error(ErrorKind::kOption,
+                  "give topic (one topic with both sensors) or accel_topic and "
+                  "gyro_topic (a topic per sensor), not both",
+                  Suggest(Option::kLogTopic, Option::kAccelTopic));
+    }
+    log.topic = accel_topic;
+  }
+  return Interruptible([path, log, gyro_log, gyro_columns, gyro_topic] {
     Recording recording = ReadLog(path, log);
-    if (!gyro_log.empty()) {
-      LogOptions gyro_options;
-      gyro_options.columns = gyro_columns;
-      gyro_options.time_unit = log.time_unit;
-      gyro_options.rate_hz = log.rate_hz;
-      gyro_options.gyro_in_dps = log.gyro_in_dps;
-      gyro_options.gyro_in_counts = log.gyro_in_counts;
-      const Recording gyro = ReadGyroLog(gyro_log, gyro_options);
-      MergeGyroLog(recording, gyro, log.gyro_units());
-      recording.warnings.insert(
-          recording.warnings.end(), gyro.warnings.begin(), gyro.warnings.end());
+    if (gyro_log.empty() && gyro_topic.empty()) return recording;
+    LogOptions gyro_options;
+    gyro_options.columns = gyro_columns;
+    gyro_options.time_unit = log.time_unit;
+    gyro_options.rate_hz = log.rate_hz;
+    gyro_options.gyro_in_dps = log.gyro_in_dps;
+    gyro_options.gyro_in_counts = log.gyro_in_counts;
+    gyro_options.topic = gyro_topic;
+    gyro_options.recording_time = log.recording_time;
+    const Recording gyro = ReadGyroLog(gyro_log.empty() ? path : gyro_log, gyro_options);
+    // The gyroscope's own stream replaces whatever rates the accelerometer's
+    // messages carry (a driver's accelerometer topic may fill them with zeros).
+    if (!gyro_topic.empty()) recording.gyro_radps.clear();
+    const StreamMerge merged = MergeGyroLog(recording, gyro, log.gyro_units());
+    recording.warnings.insert(
+        recording.warnings.end(), gyro.warnings.begin(), gyro.warnings.end());
+    const std::string accel_name = gyro_topic.empty() ? recording.source : log.topic;
+    const std::string gyro_name = gyro_topic.empty() ? gyro.source : gyro_topic;
+    for (const StreamFinding f : merged.findings) {
+      recording.warnings.push_back(DescribeStreams(f, merged, accel_name, gyro_name));
     }
     return recording;
   });
@@ -188,10 +241,11 @@ CalibrateOptions CalibrateOptionsFrom(const py::dict& o, const py::object& gravi
   return c;
 }
 
-Calibration CalibrateShared(std::shared_ptr<const Recording> recording,
-                            const py::object& gravity,
-                            const py::dict& options,
-                            const std::string& provenance) {
+// (calibration, findings).
+py::tuple CalibrateShared(std::shared_ptr<const Recording> recording,
+                          const py::object& gravity,
+                          const py::dict& options,
+                          const std::string& provenance) {
   const CalibrateOptions c = CalibrateOptionsFrom(options, gravity);
   if (c.counts_per_g > 0.0 && recording->units != AccelUnits::kCounts) {
     throw Error(ErrorKind::kOption,
@@ -209,24 +263,29 @@ Calibration CalibrateShared(std::shared_ptr<const Recording> recording,
                 Advice{{}, Stage::kDetect, ""});
   }
   result.calibration.provenance = Provenance{MPCAL_VERSION, "<arrays>", provenance};
-  return std::move(result.calibration);
+  py::list findings = CalibrateFindings(result);
+  return py::make_tuple(py::cast(std::move(result.calibration)), findings);
 }
 
-// Arrays of the caller's: copied into the rows the library takes.
-Calibration Calibrate(const Rows& t,
-                      const Rows& accel,
-                      const py::object& gyro,
-                      const std::string& units,
-                      const std::string& gyro_units,
-                      const py::object& gravity,
-                      const py::dict& options,
-                      const std::string& provenance) {
+// Arrays of the caller's, copied into the rows the library takes and
+// checked finite in the same pass. Returns the Calibration, or the name of
+// the argument holding a NaN or an infinity (mpcal/__init__.py words the
+// error, with the row).
+py::object Calibrate(const Rows& t,
+                     const Rows& accel,
+                     const py::object& gyro,
+                     const std::string& units,
+                     const std::string& gyro_units,
+                     const py::object& gravity,
+                     const py::dict& options,
+                     const std::string& provenance) {
   CalibrateOptionsFrom(options, gravity);  // bad options before the copy
-  return CalibrateShared(
-      std::make_shared<const Recording>(ToRecording(t, accel, gyro, units, gyro_units)),
-      gravity,
-      options,
-      provenance);
+  CheckedRecording checked = ToRecordingChecked(t, accel, gyro, units, gyro_units);
+  if (!checked.not_finite.empty()) return py::str(checked.not_finite);
+  return CalibrateShared(std::make_shared<const Recording>(std::move(checked.recording)),
+                         gravity,
+                         options,
+                         provenance);
 }
 
 // accel (N×3, the calibration's input units) corrected into `out` (N×3 m/s²);
@@ -361,6 +420,7 @@ PYBIND11_MODULE(_mpcal, m) {
   AddDetect(m);
   AddSimulate(m);
   AddNoise(m);
+  AddExport(m);
 }
 
 }  // namespace mpcal::python

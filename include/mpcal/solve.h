@@ -85,6 +85,37 @@ struct SolveOptions {
   std::string Validate() const;
 };
 
+/// What a warning of the solver is about.
+enum class SolveNoteKind {
+  kOutlierExcluded,  ///< a position left out: it fits far beyond its noise
+  /// A position that fits far beyond its noise kept: without it the others
+  /// do not determine the parameters.
+  kOutlierKept,
+  kPoorlyDetermined,  ///< a parameter strongly correlated with others
+  kNoRedundancy,      ///< as many positions as parameters: nothing checks them
+  kHalvesDisagree,    ///< two halves of the positions differ beyond their 1σ
+};
+
+/// The facts of one warning of the solver (SolveResult::notes, one per
+/// entry of SolveResult::warnings, in the same order).
+struct SolveNote {
+  SolveNoteKind kind = SolveNoteKind::kOutlierExcluded;
+  /// kOutlier*: the position (0-based, in the order given), its times (s,
+  /// the positions' clock) and its deleted residual in units of its noise.
+  std::size_t position = 0;
+  double start_s = 0.0;
+  double end_s = 0.0;
+  double residual_z = 0.0;
+  /// kPoorlyDetermined: the parameter (a name of kParameterNames).
+  std::string parameter;
+  /// kNoRedundancy: the positions and the parameters they determine.
+  std::size_t positions = 0;
+  int parameters = 0;
+  /// kHalvesDisagree: the comparison, and the factor every 1σ is widened by.
+  SplitHalfComparison halves;
+  double widening = 1.0;
+};
+
 enum class SolveStatus { kConverged, kNoConvergence };
 std::string_view ToString(SolveStatus status);
 
@@ -139,6 +170,8 @@ struct SolveResult {
   double final_cost = 0.0;
   int iterations = 0;
   std::vector<std::string> warnings;
+  /// The facts of each of `warnings`, in the same order.
+  std::vector<SolveNote> notes;
   /// Parameters the positions determine only poorly (strongly correlated
   /// with others; names of kParameterNames): more orientations, filling the
   /// gaps of their coverage of the sphere (Stage::kDetect shows it), help.

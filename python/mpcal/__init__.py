@@ -16,22 +16,29 @@ are, and others are checked and copied.
 
 Bad input raises :class:`mpcal.Error` (a ValueError) with ``kind``,
 ``advice`` (the keyword arguments the message speaks of) and ``figures``;
-findings that do not stop the work are issued as :class:`MpcalWarning`.
+findings that do not stop the work are :class:`Finding` objects (a
+:class:`FindingKind`, the figures in SI units, the keyword arguments that
+would change them) in the results' ``findings``, and are issued as
+:class:`MpcalWarning` with the finding attached. :func:`export` writes
+other tools' files (Kalibr, OpenVINS, imu_tk, ...) as ``mpcal export``
+does; :func:`import_calibration` reads theirs.
 """
 
 import json
 import math
+import os
 from collections.abc import Mapping
 import warnings as _warnings
 
 import numpy as np
 
 from . import _mpcal
-from ._errors import Error, MpcalWarning
+from ._errors import Error, Finding, FindingKind, MpcalWarning
 
-__all__ = ["Error", "MpcalWarning", "Recording", "Calibration", "Section", "read_log",
-           "detect", "calibrate", "noise", "load_calibration", "simulate_static", "simulate_noise", "Simulation",
-           "__version__"]
+__all__ = ["Error", "Finding", "FindingKind", "MpcalWarning", "Recording", "Calibration",
+           "Section", "read_log", "detect", "calibrate", "noise", "load_calibration",
+           "simulate_static", "simulate_noise", "Simulation", "export",
+           "import_calibration", "export_formats", "__version__"]
 
 __version__ = _mpcal.__version__
 
@@ -47,9 +54,16 @@ _READ_LOG_DEFAULTS = _mpcal._read_log_defaults()
 _CALIBRATE_DEFAULTS = _mpcal._calibrate_defaults()
 
 
-def _warn(messages, stacklevel=3):
-    for message in messages:
-        _warnings.warn(message, MpcalWarning, stacklevel=stacklevel)
+def _findings(found):
+    """Findings as the library hands them over (dicts, or a reader's
+    sentences) as :class:`Finding` objects."""
+    return [f if isinstance(f, Finding) else
+            Finding(**f) if isinstance(f, dict) else Finding("log", f) for f in found]
+
+
+def _warn(findings, stacklevel=3):
+    for finding in findings:
+        _warnings.warn(MpcalWarning(finding), stacklevel=stacklevel)
 
 
 def _options(function, given, defaults):
@@ -62,9 +76,10 @@ def _options(function, given, defaults):
     return merged
 
 
-def _rows(name, values, columns):
-    """`values` as float64 in C order, (N,) or (N, 3), all finite; else an
-    mpcal.Error naming the argument."""
+def _shaped(name, values, columns):
+    """`values` as float64 in C order, (N,) or (N, 3) (a view when they are
+    already, else a converted copy); else an mpcal.Error naming the
+    argument. The values are not looked at: see _rows and _not_finite."""
     a = np.asarray(values)
     if a.dtype.kind not in "fiu":
         raise Error(f"{name}: dtype {a.dtype} is not a real number type; give "
@@ -75,12 +90,24 @@ def _rows(name, values, columns):
     if columns == 3 and (a.ndim != 2 or a.shape[1] != 3):
         raise Error(f"{name}: shape {a.shape}, expected (N, 3): one row per sample, "
                     f"columns x, y, z", kind="input")
-    a = np.ascontiguousarray(a, dtype=np.float64)
+    return np.ascontiguousarray(a, dtype=np.float64)
+
+
+def _not_finite(name, a):
+    """The error for an array with a NaN or an infinity: its first such row
+    and how many there are."""
     finite = np.isfinite(a)
-    if not finite.all():
-        bad = np.flatnonzero(~finite.reshape(len(a), -1).all(axis=1))
-        raise Error(f"{name}: row {bad[0]} is not finite ({a[bad[0]]}), and "
-                    f"{len(bad)} row(s) in all; drop or fill them first", kind="input")
+    bad = np.flatnonzero(~finite.reshape(len(a), -1).all(axis=1))
+    return Error(f"{name}: row {bad[0]} is not finite ({a[bad[0]]}), and "
+                 f"{len(bad)} row(s) in all; drop or fill them first", kind="input")
+
+
+def _rows(name, values, columns):
+    """`values` as float64 in C order, (N,) or (N, 3), all finite; else an
+    mpcal.Error naming the argument."""
+    a = _shaped(name, values, columns)
+    if not np.isfinite(a).all():
+        raise _not_finite(name, a)
     return a
 
 
@@ -134,6 +161,11 @@ def read_log(path, **options):
     topic : str
         The sensor_msgs/Imu topic of a bag or MCAP file (default: its only
         one).
+    accel_topic, gyro_topic : str
+        A recording that publishes the sensors apart (a topic each, at their
+        own rates and stamps): the accelerometer's topic gives the rows, the
+        gyroscope's (in this recording, or in ``gyro_log``'s) is averaged
+        onto them, as ``mpcal calibrate`` does with two topics.
     time : str
         A bag's time: "header" (default: each message's header stamp) or
         "receive" (when the recorder received it).
@@ -141,8 +173,9 @@ def read_log(path, **options):
         The gyroscope in a file of its own, row by row with the log
         (imu_tk's xsens_gyro.mat), and its column mapping.
 
-    The reader's findings (gaps, duplicated times) are in ``warnings`` and
-    issued as :class:`MpcalWarning`. Raises :class:`Error` for a missing or
+    The reader's findings (gaps, duplicated times, two streams that do not
+    line up) are in ``warnings`` (sentences) and issued as
+    :class:`MpcalWarning` (kind "log"). Raises :class:`Error` for a missing or
     malformed file (naming the line and column), or invalid options.
     """
     recording = _mpcal._read_log(str(path), _options("read_log", options,
@@ -194,8 +227,9 @@ def calibrate(t, accel, gyro=None, units="mps2", gravity=None, gyro_units="rads"
     copied (float64, C order) into the rows the library takes.
 
     Returns a :class:`Calibration` whose attributes mirror the calibration
-    file ``mpcal calibrate -o`` writes. Its warnings are also issued as
-    :class:`MpcalWarning`. Raises :class:`Error` when the session cannot be
+    file ``mpcal calibrate -o`` writes, and ``findings``: each warning as a
+    :class:`Finding` (kind, figures, the keyword arguments that would change
+    it), also issued as :class:`MpcalWarning`. Raises :class:`Error` when the session cannot be
     calibrated (kind "session", with the advice), the readings do not fit
     ``units`` (kind "units"), the fit does not converge, or an argument is
     malformed (naming it).
@@ -208,18 +242,20 @@ def calibrate(t, accel, gyro=None, units="mps2", gravity=None, gyro_units="rads"
     recording = _recording_of(t, accel, gyro, units, gyro_units)
     if recording is not None:
         native = _mpcal._calibrate_recording(recording, gravity, options, provenance)
-        result = Calibration(native)
-        _warn(result.warnings)
+        result = Calibration(*native)
+        _warn(result.findings)
         return result
-    t = _rows("t", t, 1)
-    accel = _rows("accel", accel, 3)
-    if gyro is not None:
-        gyro = _rows("gyro", gyro, 3)
-    _same_length(t=t, accel=accel, gyro=gyro)
-    native = _mpcal._calibrate(t, accel, gyro, units, gyro_units, gravity, options,
-                               provenance)
-    result = Calibration(native)
-    _warn(result.warnings)
+    # The values are checked finite by the library as it copies them (one
+    # pass over the caller's memory); it names the argument that is not.
+    arrays = {"t": _shaped("t", t, 1), "accel": _shaped("accel", accel, 3),
+              "gyro": None if gyro is None else _shaped("gyro", gyro, 3)}
+    _same_length(**arrays)
+    native = _mpcal._calibrate(arrays["t"], arrays["accel"], arrays["gyro"], units,
+                               gyro_units, gravity, options, provenance)
+    if isinstance(native, str):
+        raise _not_finite(native, arrays[native])
+    result = Calibration(*native)
+    _warn(result.findings)
     return result
 
 
@@ -248,11 +284,12 @@ def detect(t, accel, units="mps2", gravity=None, **options):
     ``observability``, ``problems``, ``advice``, ``summary``),
     ``detection`` (``quiet_level`` and ``threshold`` in ``units``,
     ``still_fraction``, ``longest_still_s``, ``sample_period_s``, ...);
-    and besides: ``outcome`` (``kind``: "found", "never_still",
-    "too_short" or "all_clipped"; ``message``; ``advice``: the keyword
-    arguments that would change it) and ``findings`` (a position dropped,
-    a sensor never still: ``kind``, ``message``, ``advice``; also issued as
-    :class:`MpcalWarning`).
+    and besides: ``outcome`` (a :class:`Finding` whose ``kind`` is
+    "found", "never_still", "too_short" or "all_clipped", with the figures
+    behind it: ``span_s``, ``longest_still_s``, ``quiet_level``,
+    ``threshold``, ... and ``advice``: the keyword arguments that would
+    change it) and ``findings`` (:class:`Finding` objects: a position
+    dropped, a sensor never still; also issued as :class:`MpcalWarning`).
     """
     defaults = {k: _CALIBRATE_DEFAULTS[k] for k in _DETECT_KEYS}
     options = _options("detect", options, defaults)
@@ -261,8 +298,12 @@ def detect(t, accel, units="mps2", gravity=None, **options):
     _same_length(t=t, accel=accel)
     g = 9.80665 if gravity is None else float(gravity)
     result = _mpcal._detect(t, accel, units, g, options)
-    _warn(f["message"] for f in result["findings"])
-    return Section(result)
+    findings = _findings(result.pop("findings"))
+    outcome = Finding(**result.pop("outcome"))
+    section = Section(result)
+    section.findings, section.outcome = findings, outcome
+    _warn(findings)
+    return section
 
 
 _SIMULATE_STATIC_DEFAULTS = _mpcal._simulate_static_defaults()
@@ -378,7 +419,150 @@ def load_calibration(path):
     """Read a calibration file (mpcal.accelerometer/1 or mpcal.imu/1) into a
     :class:`Calibration`. Raises :class:`Error` (kind "format", "input" or
     "io") for an unreadable or malformed file."""
-    return Calibration(_mpcal._load_calibration(str(path)))
+    calibration = Calibration(_mpcal._load_calibration(str(path)))
+    calibration._path = str(path)
+    return calibration
+
+
+_NOTE_WORDS = {
+    "not_measured": "{q} was not measured (not in what was given); the file holds "
+                    "{v}, labelled so on its line",
+    "upper_bound": "{q} was not measured; the file has its upper bound {v} (labelled "
+                   "in a comment){more}",
+    "term_dropped": "the format cannot hold {q} (largest entry {v}); dropped",
+    "comment_only": "the format has no key for {q} (largest entry {v}): written in "
+                    "the file's comments only (the tool estimates its own)",
+    "frame_rotated": "{q}: the format's frame is not mpcal's; output corrected by "
+                     "this file is rotated by {v} ({deg:.4g} deg) from mpcal's",
+    "approximated": "{q} held approximately; a corrected reading differs from "
+                    "mpcal's by up to {v}",
+}
+
+
+def _note_finding(note, file):
+    """An export's or import's note (what the file could not carry) as a
+    :class:`Finding`, worded as ``mpcal export`` words it."""
+    v = f"{note['magnitude']:.4g}" + (f" {note['unit']}" if note["unit"] else "")
+    more = ""
+    if note["record_needed_s"] is not None:
+        more = f"; record at least {note['record_needed_s']:.4g} s to measure it"
+    message = f"{file}: " + _NOTE_WORDS[note["kind"]].format(
+        q=note["quantity"], v=v, more=more, deg=math.degrees(note["magnitude"]))
+    figures = {k: note[k] for k in ("quantity", "magnitude", "unit", "record_needed_s")}
+    return Finding(note["kind"], message, figures=figures)
+
+
+def export_formats():
+    """The other tools' files :func:`export` writes and
+    :func:`import_calibration` reads: a list of dicts with ``name`` (as
+    ``format``), ``file`` (the tool's file), ``calibration`` and ``noise``
+    (whether export uses them: "required", "optional" or "unused"),
+    ``needs_gyroscope``, ``writes`` and ``reads``."""
+    return _mpcal._formats()
+
+
+def _is_path(value):
+    return isinstance(value, (str, bytes)) or hasattr(value, "__fspath__")
+
+
+def export(format, calibration=None, noise=None, path=None, *, rostopic="/imu0",
+           rate_hz=None):
+    """The calibration and the noise in another tool's own file, as ``mpcal
+    export FORMAT ... -o PATH`` writes it (the same text, byte for byte).
+
+    format : str
+        "kalibr", "openvins", "imu-tk", ... (:func:`export_formats`).
+    calibration : Calibration or path, optional
+        A :class:`Calibration` (named in the file's comments by the file it
+        was loaded from or saved to, else "<calibration>"), or the path of
+        a calibration file (named as given).
+    noise : mapping or path, optional
+        The result of :func:`noise` (named "<noise>"), or the path of a
+        noise file (``mpcal noise --json``).
+    path : path, optional
+        Where to write the file, whole or not at all (a temporary file
+        renamed into place); refused when it is one of the inputs. None:
+        nothing written.
+    rostopic : str
+        The IMU's topic, where the file names one.
+    rate_hz : float, optional
+        The IMU's sample rate (Hz) where the file wants one (default: the
+        noise's).
+
+    Returns the file's text. What the file cannot carry (a value not
+    measured, a term the format has no place for, a frame that differs) is
+    issued as :class:`MpcalWarning`, each with its :class:`Finding`
+    (``quantity``, ``magnitude``, ``unit``). Raises :class:`Error` when the
+    format needs what was not given (kind "input"), the format is unknown
+    (kind "option"), or a file cannot be read or written.
+    """
+    cal_native, cal_name, read_cal = None, "", False
+    if isinstance(calibration, Calibration):
+        cal_native = calibration._native
+        cal_name = calibration._path or "<calibration>"
+    elif calibration is not None:
+        if not _is_path(calibration):
+            raise Error(f"calibration: {type(calibration).__name__} is neither a "
+                        f"Calibration nor a path", kind="input")
+        cal_name, read_cal = os.fsdecode(calibration), True
+    noise_json, noise_name, read_noise = None, "", False
+    if noise is not None:
+        if _is_path(noise):
+            noise_name, read_noise = os.fsdecode(noise), True
+        elif isinstance(noise, Mapping):
+            data = noise.to_dict() if isinstance(noise, Section) else dict(noise)
+            noise_json, noise_name = json.dumps(data), "<noise>"
+        else:
+            raise Error(f"noise: {type(noise).__name__} is neither the result of "
+                        f"mpcal.noise nor a path", kind="input")
+    if rate_hz is not None:
+        rate_hz = float(rate_hz)
+        if not (math.isfinite(rate_hz) and rate_hz > 0):
+            raise Error(f"rate_hz: {rate_hz} is not a sample rate (Hz); give a "
+                        f"positive number", kind="option", advice={"rate_hz": None})
+    output = "" if path is None else os.fsdecode(path)
+    text, notes = _mpcal._export(str(format), cal_native, cal_name, read_cal, noise_json,
+                                 noise_name, read_noise, str(rostopic), rate_hz, output)
+    _warn(_note_finding(n, output or str(format)) for n in notes)
+    return text
+
+
+def import_calibration(format, *paths, units="mps2", gyro_units="rads", gravity=None):
+    """Another tool's calibration as a :class:`Calibration` without 1σ, as
+    ``mpcal import FORMAT PATHS... -o CALIB.json`` reads it.
+
+    format : str
+        "imu-tk", "kalibr-scale-misalignment", ... (:func:`export_formats`,
+        those that read).
+    paths : paths
+        The tool's file(s), in the order the format takes them (imu_tk:
+        the accelerometer's .calib, then the gyroscope's).
+    units, gyro_units : str
+        Units of the raw readings the tool's parameters apply to: "mps2",
+        "g" or "counts"; "rads", "dps" or "counts".
+    gravity : float, optional
+        The gravity magnitude the calibration holds for (m/s², default
+        9.80665).
+
+    What mpcal's model could not hold is issued as :class:`MpcalWarning`.
+    Raises :class:`Error` naming the file, the key and what is wrong.
+    """
+    if not paths:
+        raise Error("import_calibration: give the tool's file(s) after the format",
+                    kind="input")
+    names = [os.fsdecode(p) for p in paths]
+    g = 9.80665 if gravity is None else float(gravity)
+    if not math.isfinite(g):
+        raise Error(f"gravity: {gravity} is not a number of m/s²", kind="option",
+                    advice={"gravity": None})
+    provenance = (f"mpcal.import_calibration({str(format)!r}, "
+                  f"{', '.join(repr(n) for n in names)}, units={units!r}, "
+                  f"gyro_units={gyro_units!r}, gravity={g!r})")
+    native, notes = _mpcal._import(str(format), names, str(units), str(gyro_units), g,
+                                   provenance)
+    findings = [_note_finding(n, names[0]) for n in notes]
+    _warn(findings)
+    return Calibration(native, findings)
 
 
 class Section(Mapping):
@@ -444,12 +628,18 @@ class Calibration:
     mps2_per_unit, ...), std (the same parameters' 1σ), fit (residuals,
     variance factor, split_half, ...), positions (one Section per static
     position), warnings, gyroscope (m (3×3), bias_radps, std, fit, ... or
-    None), provenance; bias_drift_mps2_per_s when the session showed one.
+    None), provenance; bias_drift_mps2_per_s when the session showed one;
+    findings (the warnings as :class:`Finding` objects).
     """
 
-    def __init__(self, native):
+    def __init__(self, native, findings=()):
         self._native = native
         self._file = json.loads(native._json())
+        self._path = None
+        #: Each of ``warnings`` as a :class:`Finding` (a calibration made by
+        #: :func:`calibrate`; empty for one read from a file, whose warnings
+        #: are sentences only).
+        self.findings = _findings(findings)
 
     def __getattr__(self, name):
         if name.startswith("_"):
@@ -536,6 +726,7 @@ class Calibration:
         all (a temporary file renamed into place). Raises :class:`Error`
         (kind "io") when it cannot be written."""
         self._native._save(str(path))
+        self._path = str(path)
 
     def __repr__(self):
         b = ", ".join(f"{x:.6g}" for x in self._file["bias_mps2"])

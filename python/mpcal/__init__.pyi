@@ -1,6 +1,7 @@
 # Type stubs of the package mpcal (python/mpcal/__init__.py), for editors.
 from os import PathLike
-from typing import Any, Iterable, Literal, Optional, Union
+import enum
+from typing import Any, Iterable, Literal, Mapping, Optional, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -22,7 +23,40 @@ class Error(ValueError):
                  stage: Optional[str] = ..., stage_input: str = ...,
                  figures: Optional[dict[str, Any]] = ...) -> None: ...
 
-class MpcalWarning(UserWarning): ...
+class FindingKind(str, enum.Enum):
+    LOG = "log"
+    CLIPPED_POSITION = "clipped_position"
+    NOT_STILL = "not_still"
+    OUTLIER_EXCLUDED = "outlier_excluded"
+    OUTLIER_KEPT = "outlier_kept"
+    POORLY_DETERMINED = "poorly_determined"
+    NO_REDUNDANCY = "no_redundancy"
+    HALVES_DISAGREE = "halves_disagree"
+    GYROSCOPE_NOT_CALIBRATED = "gyroscope_not_calibrated"
+    GYROSCOPE_NOT_CONVERGED = "gyroscope_not_converged"
+    GYROSCOPE_TOO_FEW_TURNS = "gyroscope_too_few_turns"
+    GYROSCOPE_UNDETERMINED = "gyroscope_undetermined"
+    GYROSCOPE_POORLY_DETERMINED = "gyroscope_poorly_determined"
+    NOT_MEASURED = "not_measured"
+    UPPER_BOUND = "upper_bound"
+    TERM_DROPPED = "term_dropped"
+    COMMENT_ONLY = "comment_only"
+    FRAME_ROTATED = "frame_rotated"
+    APPROXIMATED = "approximated"
+
+class Finding:
+    kind: Union[FindingKind, str]
+    message: str
+    advice: dict[str, Any]
+    stage: Optional[str]
+    figures: dict[str, Any]
+    def __init__(self, kind: str, message: str, advice: Optional[dict[str, Any]] = ...,
+                 stage: Optional[str] = ..., figures: Optional[dict[str, Any]] = ...) -> None: ...
+    def __getattr__(self, name: str) -> Any: ...
+
+class MpcalWarning(UserWarning):
+    finding: Finding
+    def __init__(self, finding: Union[Finding, str]) -> None: ...
 
 class Recording:
     @property
@@ -70,6 +104,7 @@ class Calibration:
     fit: Section
     positions: list[Section]
     warnings: list[str]
+    findings: list[Finding]
     provenance: Section
     def __getattr__(self, name: str) -> Any: ...
     def to_dict(self) -> dict[str, Any]: ...
@@ -80,7 +115,9 @@ class Calibration:
 
 def read_log(path: Path, *, columns: str = ..., units: AccelUnits = ...,
              gyro_units: GyroUnits = ..., time_unit: str = ..., rate_hz: float = ...,
-             topic: str = ..., gyro_log: str = ..., gyro_columns: str = ...) -> Recording: ...
+             topic: str = ..., time: Literal["header", "receive"] = ...,
+             gyro_log: str = ..., gyro_columns: str = ..., accel_topic: str = ...,
+             gyro_topic: str = ...) -> Recording: ...
 
 def calibrate(t: ArrayLike, accel: ArrayLike, gyro: Optional[ArrayLike] = ...,
               units: AccelUnits = ..., gravity: Optional[float] = ...,
@@ -130,3 +167,13 @@ def noise(t: ArrayLike, accel: ArrayLike, gyro: Optional[ArrayLike] = ...,
 def simulate_noise(preset: Literal["consumer", "industrial"] = ..., duration_s: float = ...,
                    rate_hz: float = ..., seed: int = ...
                    ) -> tuple[Recording, dict[str, dict[str, list[float]]]]: ...
+
+def export_formats() -> list[dict[str, Any]]: ...
+
+def export(format: str, calibration: Optional[Union[Calibration, Path]] = ...,
+           noise: Optional[Union[Mapping[str, Any], Path]] = ..., path: Optional[Path] = ...,
+           *, rostopic: str = ..., rate_hz: Optional[float] = ...) -> str: ...
+
+def import_calibration(format: str, *paths: Path, units: AccelUnits = ...,
+                       gyro_units: GyroUnits = ..., gravity: Optional[float] = ...
+                       ) -> Calibration: ...

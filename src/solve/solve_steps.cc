@@ -29,6 +29,19 @@ constexpr double kMaxOutlierShare = 0.2;
 // fitted, leave the test too little to judge by.
 constexpr int kMinDriftRedundancy = 3;
 
+SolveNote OutlierNote(SolveNoteKind kind,
+                      const PositionObservation& position,
+                      std::size_t k,
+                      double own_z) {
+  SolveNote note;
+  note.kind = kind;
+  note.position = k;
+  note.start_s = position.start_s;
+  note.end_s = position.end_s;
+  note.residual_z = std::abs(own_z);
+  return note;
+}
+
 // One position out; false (and the position back in, with a warning) when
 // the rest no longer determine the parameters.
 bool TryExclude(std::span<const PositionObservation> positions,
@@ -45,6 +58,8 @@ bool TryExclude(std::span<const PositionObservation> positions,
     refit->Run();
   } catch (const Error&) {
     result.used[k] = true;
+    result.notes.push_back(
+        OutlierNote(SolveNoteKind::kOutlierKept, positions[k], k, own_z));
     result.warnings.push_back(fmt::format(
         "position {} ({:.1f}-{:.1f} s) fits badly ({:.1f} times its noise) but cannot "
         "be excluded: no other position determines the same parameters",
@@ -54,6 +69,8 @@ bool TryExclude(std::span<const PositionObservation> positions,
         std::abs(own_z)));
     return false;
   }
+  result.notes.push_back(
+      OutlierNote(SolveNoteKind::kOutlierExcluded, positions[k], k, own_z));
   result.warnings.push_back(
       fmt::format("position {} ({:.1f}-{:.1f} s) excluded as an outlier: its residual "
                   "is {:.1f} times "
@@ -280,6 +297,10 @@ void WarnAboutDetermination(
   for (const std::string& name :
        AnalyseObservability(fit.Jacobian(), fit.Names()).poorly_determined) {
     result.poorly_determined.push_back(name);
+    SolveNote note;
+    note.kind = SolveNoteKind::kPoorlyDetermined;
+    note.parameter = name;
+    result.notes.push_back(note);
     result.warnings.push_back(
         fmt::format("{} is poorly determined by these positions (strongly correlated "
                     "with other parameters): add positions that fill the gaps in their "
@@ -287,6 +308,11 @@ void WarnAboutDetermination(
                     name));
   }
   if (dof == 0) {
+    SolveNote note;
+    note.kind = SolveNoteKind::kNoRedundancy;
+    note.positions = count;
+    note.parameters = parameters;
+    result.notes.push_back(note);
     result.warnings.push_back(fmt::format(
         "{} positions for {} parameters leave no redundancy: the residuals are zero by "
         "construction and cannot reveal a bad position; the 1σ come from the sensor "
@@ -366,6 +392,11 @@ void WidenBySplitHalves(std::span<const PositionObservation> positions,
   if (result.bias_drift) result.bias_drift->std_mps2_per_s *= widening;
   for (const SplitHalfComparison& c : result.split_half->comparisons) {
     if (!c.determined || !c.disagree) continue;
+    SolveNote note;
+    note.kind = SolveNoteKind::kHalvesDisagree;
+    note.halves = c;
+    note.widening = widening;
+    result.notes.push_back(note);
     result.warnings.push_back(
         fmt::format("the two halves of the positions ({}, {} and {}) give estimates that "
                     "differ beyond "
