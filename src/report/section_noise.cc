@@ -132,22 +132,37 @@ std::string AllanPlot(const AxisNoise& a, bool gyro, int axis) {
   spec.fills.push_back(band);
   spec.series.push_back(adev);
   if (a.curve.empty()) return LinePlot(spec);
-  // Each measured term alone, dashed, and their sum, over the whole curve.
+  // Where the fitted model lies outside the curve's interval (ModelCheck),
+  // shaded: no term is read there.
+  for (const TauRange& r : a.check.disagree) {
+    spec.bands.push_back({r.lo_s, r.hi_s, "", "band-misfit"});
+  }
+  if (!a.check.disagree.empty()) {
+    spec.extra_legend.push_back({"the model misses the curve (outside its interval)",
+                                 {},
+                                 true,
+                                 "band-misfit",
+                                 false});
+  }
+  // Each measured term's own line (slope −1, −½, 0, +½, +1) drawn over the
+  // cluster times it was read from, not beyond: where the curve supports it.
   Series sum{"sum of the fitted terms", {}, {}, StandardStyle(1), true, false};
   int style = 2;
   for (int i = 0; i < kNoiseTermCount; ++i) {
     const TermEstimate& e = a.terms[i];
     if (!e.value) continue;
-    Series line{
-        fmt::format(
-            "{} = {}", TermName(static_cast<NoiseTerm>(i)), Significant(*e.value, 3)),
-        {},
-        {},
-        StandardStyle(style++),
-        true,
-        false};
+    Series line{fmt::format("{} = {}, read over τ {}",
+                            TermName(static_cast<NoiseTerm>(i)),
+                            Significant(*e.value, 3),
+                            FormatTauRanges({TauRange{e.tau_lo_s, e.tau_hi_s}}, 1)),
+                {},
+                {},
+                StandardStyle(style++),
+                true,
+                false};
     line.style.dash = "5,4";
     for (const AllanPoint& p : a.curve) {
+      if (p.tau_s < e.tau_lo_s || p.tau_s > e.tau_hi_s) continue;
       line.x.push_back(p.tau_s);
       line.y.push_back(TermAdev(static_cast<NoiseTerm>(i), *e.value, p.tau_s));
     }
@@ -192,13 +207,13 @@ std::string NoiseSection(const NoiseFile& f) {
     html += fmt::format("<h3>{}</h3>\n", gyro ? "Gyroscope" : "Accelerometer");
     html += TermsTable(*s, gyro);
     for (int axis = 0; axis < 3; ++axis) {
-      html +=
-          Figure(AllanPlot(s->axes[axis], gyro, axis),
-                 fmt::format(
-                     "Allan deviation of the {} {} axis, its confidence band, the fitted "
-                     "terms (dashed) and their sum.",
-                     gyro ? "gyroscope" : "accelerometer",
-                     kAxis[axis]));
+      html += Figure(
+          AllanPlot(s->axes[axis], gyro, axis),
+          fmt::format("Allan deviation of the {} {} axis, its confidence band, each "
+                      "measured term's line (dashed) over the cluster times it was read "
+                      "from, their sum, and shaded where the model misses the curve.",
+                      gyro ? "gyroscope" : "accelerometer",
+                      kAxis[axis]));
     }
   }
   return html + "</section>\n";
