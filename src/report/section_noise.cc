@@ -168,6 +168,48 @@ std::string AllanPlot(const AxisNoise& a, bool gyro, int axis) {
     }
     spec.series.push_back(line);
   }
+  // The Gauss-Markov bump and the sinusoid, each as its own curve over the
+  // cluster times it was read from.
+  if (a.gauss_markov.sigma) {
+    const GaussMarkovTerm& g = a.gauss_markov;
+    Series line{fmt::format("Gauss-Markov σ = {}, τc = {} s, read over τ {}",
+                            Significant(*g.sigma, 3),
+                            Significant(g.tau_c_s, 3),
+                            FormatTauRanges({TauRange{g.tau_lo_s, g.tau_hi_s}}, 1)),
+                {},
+                {},
+                StandardStyle(style++),
+                true,
+                false};
+    line.style.dash = "5,4";
+    for (const AllanPoint& p : a.curve) {
+      if (p.tau_s < g.tau_lo_s || p.tau_s > g.tau_hi_s) continue;
+      line.x.push_back(p.tau_s);
+      line.y.push_back(std::sqrt(GaussMarkovAvar(*g.sigma * *g.sigma, g.tau_c_s, p.tau_s)));
+    }
+    spec.series.push_back(line);
+  }
+  if (a.sinusoid.amplitude) {
+    const SinusoidTerm& w = a.sinusoid;
+    Series line{fmt::format("sinusoid A = {}, P = {} s, read over τ {}",
+                            Significant(*w.amplitude, 3),
+                            Significant(w.period_s, 3),
+                            FormatTauRanges({TauRange{w.tau_lo_s, w.tau_hi_s}}, 1)),
+                {},
+                {},
+                StandardStyle(style++),
+                true,
+                false};
+    line.style.dash = "5,4";
+    for (const AllanPoint& p : a.curve) {
+      if (p.tau_s < w.tau_lo_s || p.tau_s > w.tau_hi_s) continue;
+      const double v = SinusoidAvar(*w.amplitude * *w.amplitude, w.period_s, p.tau_s);
+      if (!(v > 0.0)) continue;  // its zeros at whole periods: off the log axis
+      line.x.push_back(p.tau_s);
+      line.y.push_back(std::sqrt(v));
+    }
+    spec.series.push_back(line);
+  }
   // The sum over the cluster times fitted (from ModelCheck::from_tau_s).
   for (const AllanPoint& p : a.curve) {
     if (p.tau_s < a.check.from_tau_s) continue;
