@@ -185,7 +185,8 @@ std::string AllanPlot(const AxisNoise& a, bool gyro, int axis) {
     for (const AllanPoint& p : a.curve) {
       if (p.tau_s < g.tau_lo_s || p.tau_s > g.tau_hi_s) continue;
       line.x.push_back(p.tau_s);
-      line.y.push_back(std::sqrt(GaussMarkovAvar(*g.sigma * *g.sigma, g.tau_c_s, p.tau_s)));
+      line.y.push_back(
+          std::sqrt(GaussMarkovAvar(*g.sigma * *g.sigma, g.tau_c_s, p.tau_s)));
     }
     spec.series.push_back(line);
   }
