@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "calibration_table.h"
 #include "cli_options.h"
@@ -27,6 +28,7 @@ struct ExportFlags {
   std::vector<std::string> files;
   std::string output;
   ExportOptions options;
+  bool strict = false;
 };
 
 // The mpcal files given, each taken by its "format" tag: a calibration or a
@@ -74,11 +76,38 @@ void RunExport(const ExportFlags& f) {
   const ExportFormat* format = FindExportFormat(f.format);
   if (format == nullptr) throw Error(ErrorKind::kOption, "unknown format " + f.format);
   CheckOutput(f.output, f.files);
+  if (const std::string why = ValidateInflation(f.options.inflate); !why.empty())
+    throw Error(ErrorKind::kOption, "--inflate: " + why);
   Loaded loaded;
   for (const std::string& path : f.files) LoadOne(path, &loaded);
   if (loaded.calibration) loaded.sources.calibration = &*loaded.calibration;
   if (loaded.noise) loaded.sources.noise = &*loaded.noise;
+  if ((f.options.inflate != 1.0 || f.strict) && !loaded.noise) {
+    throw Error(ErrorKind::kOption,
+                fmt::format("{} applies to the noise values, and no noise file "
+                            "(mpcal.noise/1) was given; give one, or leave it out",
+                            f.strict ? "--strict" : "--inflate"));
+  }
   const ExportedFile out = Export(*format, loaded.sources, f.options);
+  if (f.strict) {
+    // A noise value the record did not show is an error, and no file written.
+    std::vector<std::string> unmeasured;
+    for (const ExportNote& note : out.notes) {
+      if (note.kind == ExportNoteKind::kUpperBound || note.record_could_show)
+        unmeasured.push_back(note.quantity);
+    }
+    if (!unmeasured.empty()) {
+      throw Error(ErrorKind::kInput,
+                  fmt::format("{}: --strict: {} not measured in '{}' (the file would "
+                              "hold {}); record longer, or leave out --strict to write "
+                              "them, marked",
+                              f.output,
+                              fmt::join(unmeasured, ", "),
+                              loaded.sources.noise_path,
+                              unmeasured.size() == 1 ? "an upper bound or a placeholder"
+                                                     : "upper bounds or placeholders"));
+    }
+  }
   WriteFileAtomically(f.output, out.text);
   std::vector<std::string> warnings;
   warnings.reserve(out.notes.size());
@@ -125,6 +154,18 @@ void AddExportCommand(CLI::App& root) {
          "The IMU's sample rate (Hz) where the file wants one (default: the noise "
          "file's)")
       ->check(PositiveNumber)
+      ->group("Output");
+  cmd->add_option("--inflate",
+                  f->options.inflate,
+                  "Multiply the noise values by this factor (at least 1): the file says "
+                  "so and gives the measured values beside them")
+      ->capture_default_str()
+      ->group("Output");
+  cmd->add_flag("--strict",
+                f->strict,
+                "A noise value the record did not measure (an upper bound, or a value "
+                "derived from one) is an error (exit 1, no file) instead of written, "
+                "marked")
       ->group("Output");
   cmd->footer("Formats:\n" + FormatList(true) +
               "Example:\n"

@@ -49,6 +49,7 @@ struct NoiseFlags {
   bool gyro_units_given = false;
   bool verbose = false;
   bool strict = false;
+  double inflate = 1.0;
 };
 
 // "1 sample", "2 samples".
@@ -367,8 +368,9 @@ void WriteFiles(const NoiseFlags& f, const NoiseResult& r) {
   const std::string json =
       f.json.empty() ? "" : NoiseJson(r, f.input, f.noise.allan.confidence);
   const std::optional<KalibrFile> k =
-      f.kalibr.empty() ? std::nullopt
-                       : std::optional<KalibrFile>(KalibrYaml(r, f.input, f.rostopic));
+      f.kalibr.empty()
+          ? std::nullopt
+          : std::optional<KalibrFile>(KalibrYaml(r, f.input, f.rostopic, f.inflate));
   if (k && f.strict) {
     std::vector<std::string> bounds;
     for (const auto& [name, v] :
@@ -412,12 +414,15 @@ void WriteFiles(const NoiseFlags& f, const NoiseResult& r) {
                Paint(stderr, "mpcal: warning:", Tint::kLookAt),
                f.kalibr,
                name,
-               v.value,
+               k->Written(v),
                v.record_needed_s ? fmt::format("; record at least {} to measure it",
                                                FormatRecordLength(*v.record_needed_s))
                                  : "");
   }
-  fmt::print("wrote {} (Kalibr IMU model: the largest axis of each sensor)\n", f.kalibr);
+  fmt::print("wrote {} (Kalibr IMU model: the largest axis of each sensor{})\n",
+             f.kalibr,
+             k->inflate == 1.0 ? std::string()
+                               : fmt::format("; INFLATED x{:g}, as asked", k->inflate));
 }
 
 // The calibration of --calib, when given: the log's units default to its
@@ -453,6 +458,12 @@ std::optional<RecordingCorrector> MakeCorrector(NoiseFlags& f) {
 
 void Run(NoiseFlags& f) {
   ThrowIfInvalid(f.noise.Validate(), "noise");
+  if (const std::string why = ValidateInflation(f.inflate); !why.empty())
+    throw Error(ErrorKind::kOption, "--inflate: " + why);
+  if (f.inflate != 1.0 && f.kalibr.empty())
+    throw Error(ErrorKind::kOption,
+                "--inflate multiplies the values of the Kalibr file; give --kalibr FILE "
+                "with it");
   ThrowIfInvalid(f.detect.Validate(), "noise");
   if (!f.json.empty()) CheckOutput(f.json, {f.input, f.calib});
   if (!f.kalibr.empty()) CheckOutput(f.kalibr, {f.input, f.calib, f.json});
@@ -532,6 +543,12 @@ void AddNoiseCommand(CLI::App& root) {
       f->strict,
       "With --kalibr: a value not measured on any axis is an error (exit 1, no file "
       "written) instead of its upper bound");
+  app->add_option(
+         "--inflate",
+         f->inflate,
+         "With --kalibr: multiply the four noise values by this factor (at least 1; "
+         "the file says so and gives the measured values beside them)")
+      ->capture_default_str();
   app->add_option("--rostopic", f->rostopic, "The rostopic written in the Kalibr file")
       ->capture_default_str();
   app->add_option("--calib",

@@ -47,6 +47,11 @@ struct ExportOptions {
   /// gives it; nullopt: the noise file's rate, else the format's default,
   /// said in a note.
   std::optional<double> rate_hz;
+  /// The factor the user asked the noise values to be multiplied by (≥ 1;
+  /// 1: as measured). Filters are often given inflated noise to cover what
+  /// their model lacks; the file then says so with the factor, and beside
+  /// each value the record's own.
+  double inflate = 1.0;
 };
 
 /// Why a value did not reach the file as mpcal has it.
@@ -84,6 +89,11 @@ struct ExportNote {
   /// a pure number.
   std::string unit;
   std::optional<double> record_needed_s;
+  /// A noise value the record did not show and a longer one could (every
+  /// kUpperBound, and a value derived from terms not measured): what a
+  /// strict export refuses. A value no still record holds (the scale
+  /// factor's instability) is not one.
+  bool record_could_show = false;
 };
 
 /// A written file: its text and what it could not carry.

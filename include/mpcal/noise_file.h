@@ -70,9 +70,20 @@ struct KalibrValue {
 };
 struct KalibrFile {
   std::string text;
+  /// As the record gave them (measured or bounds), before any inflation.
   KalibrValue accel_noise_density, accel_random_walk, gyro_noise_density,
       gyro_random_walk;
+  /// The factor the user asked every noise density and random walk to be
+  /// multiplied by in the file (1: as measured); Written() gives a value as
+  /// the file holds it.
+  double inflate = 1.0;
+  double Written(const KalibrValue& v) const { return v.value * inflate; }
 };
+
+/// Empty when `inflate` is a factor a filter file may carry (finite, at
+/// least 1: an inflation never makes a filter trust the sensor more than the
+/// record does); otherwise what is wrong with it.
+std::string ValidateInflation(double inflate);
 
 /// Kalibr's IMU YAML (accelerometer_noise_density, accelerometer_random_walk,
 /// gyroscope_noise_density, gyroscope_random_walk, update_rate, rostopic).
@@ -82,12 +93,17 @@ struct KalibrFile {
 /// when no axis measured the term is the value the largest upper bound,
 /// marked UPPER BOUND on its own line; the axes not measured are named in
 /// the comment either way. Densities are Kalibr's
-/// continuous-time ones, the same as mpcal's.
-/// \throws mpcal::Error when the result has no gyroscope, or a white noise
-///   or random walk has neither a value nor a bound.
+/// continuous-time ones, the same as mpcal's. `inflate` (≥ 1, asked for by
+/// the user): the four values written are the measured ones times it, and
+/// the file says so in its header and beside each value with the measured
+/// one.
+/// \throws mpcal::Error when the result has no gyroscope, a white noise or
+///   random walk has neither a value nor a bound, or `inflate` is not valid
+///   (ValidateInflation).
 KalibrFile KalibrYaml(const NoiseResult& result,
                       const std::string& input,
-                      const std::string& rostopic);
+                      const std::string& rostopic,
+                      double inflate = 1.0);
 
 /// The truth of a simulated still record (`mpcal.noise_truth/1`), in the
 /// same keys as the noise JSON.

@@ -37,6 +37,18 @@ std::string RecordText(const NoiseResult& r, const std::string& input) {
       r.rate_hz);
 }
 
+// How the values relate to the record: as measured, or inflated by the
+// user's factor (then each value's comment gives the record's own).
+std::string InflationLine(double inflate) {
+  if (inflate == 1.0) return "measured, not inflated.";
+  return fmt::format(
+      "INFLATED x{:g} at the user's request (--inflate {:g}): each noise value below is "
+      "{:g} times the record's, which its comment gives.",
+      inflate,
+      inflate,
+      inflate);
+}
+
 // The line that says a value is not a measurement, before its key.
 std::string BoundLine(const std::string& key, const KalibrValue& v) {
   std::string s = fmt::format(
@@ -57,6 +69,7 @@ struct OneValue {
 
 void AppendOneValues(std::string& out,
                      ExportedFile& file,
+                     const KalibrFile& k,
                      const OneValue* values,
                      int count) {
   for (int i = 0; i < count; ++i) {
@@ -65,22 +78,27 @@ void AppendOneValues(std::string& out,
       out += BoundLine(v.key, *v.value);
       file.notes.push_back(ExportNote{ExportNoteKind::kUpperBound,
                                       v.key,
-                                      v.value->value * v.factor,
+                                      k.Written(*v.value) * v.factor,
                                       v.unit,
                                       v.value->record_needed_s});
     }
-    out += fmt::format("{}: {:.6e}  # {}, axis {}\n",
+    out += fmt::format("{}: {:.6e}  # {}, axis {}{}\n",
                        v.key,
-                       v.value->value * v.factor,
+                       k.Written(*v.value) * v.factor,
                        v.unit,
-                       kFilterAxisNames[v.value->axis]);
+                       kFilterAxisNames[v.value->axis],
+                       k.inflate == 1.0
+                           ? std::string()
+                           : fmt::format("; INFLATED x{:g}: the record's {:.6e}",
+                                         k.inflate,
+                                         v.value->value * v.factor));
   }
 }
 
-ExportedFile WriteOrbSlam3(const ExportSources& s, const ExportOptions&) {
+ExportedFile WriteOrbSlam3(const ExportSources& s, const ExportOptions& o) {
   const NoiseResult& r = s.noise->result;
   const std::string& input = s.noise->input;
-  const KalibrFile k = KalibrYaml(r, input, "");
+  const KalibrFile k = KalibrYaml(r, input, "", o.inflate);
   ExportedFile f;
   std::string& t = f.text;
   t = "%YAML:1.0\n";
@@ -90,27 +108,28 @@ ExportedFile WriteOrbSlam3(const ExportSources& s, const ExportOptions&) {
            "to IMU transform) comes from a camera-IMU calibration, not from mpcal.",
            "Continuous-time densities, as ORB-SLAM3 reads them (Settings.cc readIMU;",
            "Tracking.cc builds IMU::Calib with noise*sqrt(f) and walk/sqrt(f)).",
-           "Rule across axes: the largest of x, y, z; measured, not inflated.",
+           "Rule across axes: the largest measured of x, y, z.",
        }) {
     t += FilterCommentLine(line);
   }
+  t += FilterCommentLine(InflationLine(k.inflate));
   const OneValue values[] = {
       {"IMU.NoiseGyro", &k.gyro_noise_density, 1.0, "rad/s/sqrt(Hz)"},
       {"IMU.NoiseAcc", &k.accel_noise_density, 1.0, "m/s^2/sqrt(Hz)"},
       {"IMU.GyroWalk", &k.gyro_random_walk, 1.0, "rad/s^2/sqrt(Hz)"},
       {"IMU.AccWalk", &k.accel_random_walk, 1.0, "m/s^3/sqrt(Hz)"},
   };
-  AppendOneValues(t, f, values, 4);
+  AppendOneValues(t, f, k, values, 4);
   t += fmt::format("IMU.Frequency: {}  # Hz ({:.6g} Hz measured, rounded)\n",
                    static_cast<long long>(std::lround(r.rate_hz)),
                    r.rate_hz);
   return f;
 }
 
-ExportedFile WriteVins(const ExportSources& s, const ExportOptions&) {
+ExportedFile WriteVins(const ExportSources& s, const ExportOptions& o) {
   const NoiseResult& r = s.noise->result;
   const std::string& input = s.noise->input;
-  const KalibrFile k = KalibrYaml(r, input, "");
+  const KalibrFile k = KalibrYaml(r, input, "", o.inflate);
   ExportedFile f;
   std::string& t = f.text;
   const double root_f = std::sqrt(r.rate_hz);
@@ -131,11 +150,12 @@ ExportedFile WriteVins(const ExportSources& s, const ExportOptions&) {
            fmt::format(
                "The standard deviation of one sample is N*sqrt(f): acc {:.4e} m/s^2,",
                k.accel_noise_density.value * root_f),
-           fmt::format("gyr {:.4e} rad/s. Largest of x, y, z; measured, not inflated.",
+           fmt::format("gyr {:.4e} rad/s (the record's). Largest measured of x, y, z.",
                        k.gyro_noise_density.value * root_f),
        }) {
     t += FilterCommentLine(line);
   }
+  t += FilterCommentLine(InflationLine(k.inflate));
   const double two_f = std::sqrt(2.0 * r.rate_hz);
   const OneValue values[] = {
       {"acc_n", &k.accel_noise_density, two_f, "m/s^2"},
@@ -143,7 +163,7 @@ ExportedFile WriteVins(const ExportSources& s, const ExportOptions&) {
       {"acc_w", &k.accel_random_walk, root_f, "m/s^3 (bias step acc_w*dt per sample)"},
       {"gyr_w", &k.gyro_random_walk, root_f, "rad/s^2 (bias step gyr_w*dt per sample)"},
   };
-  AppendOneValues(t, f, values, 4);
+  AppendOneValues(t, f, k, values, 4);
   return f;
 }
 
@@ -169,7 +189,8 @@ void AppendTriple(std::string& out,
                   const AxisTriple& a,
                   const char* unit,
                   const SensorNoise* sensor = nullptr,
-                  NoiseTerm term = NoiseTerm::kWhiteNoise) {
+                  NoiseTerm term = NoiseTerm::kWhiteNoise,
+                  double inflate = 1.0) {
   std::string bounded;
   for (int i = 0; i < 3; ++i) {
     if (a.bound[i])
@@ -188,7 +209,19 @@ void AppendTriple(std::string& out,
         sensor ? sensor->record_needed_s[static_cast<int>(term)] : std::nullopt});
   }
   out += fmt::format(
-      "  {}: [{:.6g}, {:.6g}, {:.6g}]  # [{}]\n", key, a.v[0], a.v[1], a.v[2], unit);
+      "  {}: [{:.6g}, {:.6g}, {:.6g}]  # [{}]{}\n",
+      key,
+      a.v[0],
+      a.v[1],
+      a.v[2],
+      unit,
+      inflate == 1.0
+          ? std::string()
+          : fmt::format("; INFLATED x{:g}: the record's [{:.6g}, {:.6g}, {:.6g}]",
+                        inflate,
+                        a.v[0] / inflate,
+                        a.v[1] / inflate,
+                        a.v[2] / inflate));
 }
 
 // The correlation time T = 2B²/K² (s) of the axes where both terms were
@@ -261,13 +294,14 @@ void AppendCorrTime(std::string& t,
     t += FilterCommentLine(
         "corrtime NOT MEASURED: no axis shows both B and K; written: KF-GINS's example "
         "value (config/kf-gins.yaml)");
-    f.notes.push_back(
-        ExportNote{ExportNoteKind::kNotMeasured, "corrtime", 1.0, "h", std::nullopt});
+    ExportNote note{ExportNoteKind::kNotMeasured, "corrtime", 1.0, "h", std::nullopt};
+    note.record_could_show = true;  // with B and K measured on one axis
+    f.notes.push_back(note);
     t += "  corrtime: 1.0  # [hr]\n";
   }
 }
 
-ExportedFile WriteKfGins(const ExportSources& s, const ExportOptions&) {
+ExportedFile WriteKfGins(const ExportSources& s, const ExportOptions& o) {
   const NoiseResult& r = s.noise->result;
   const std::string& input = s.noise->input;
   if (!r.gyro_radps)
@@ -287,41 +321,49 @@ ExportedFile WriteKfGins(const ExportSources& s, const ExportOptions&) {
        }) {
     t += FilterCommentLine(line);
   }
+  if (o.inflate != 1.0) {
+    t += FilterCommentLine(InflationLine(o.inflate) +
+                           " (arw, vrw, gbstd, abstd; corrtime as measured)");
+  }
   t += "imunoise:\n";
   AppendTriple(t,
                f,
                "arw",
-               TermOfAxes(g, NoiseTerm::kWhiteNoise, kRadToDeg * 60.0),
+               TermOfAxes(g, NoiseTerm::kWhiteNoise, kRadToDeg * 60.0 * o.inflate),
                "deg/sqrt(hr)",
                &g,
-               NoiseTerm::kWhiteNoise);
+               NoiseTerm::kWhiteNoise,
+               o.inflate);
   AppendTriple(t,
                f,
                "vrw",
-               TermOfAxes(a, NoiseTerm::kWhiteNoise, 60.0),
+               TermOfAxes(a, NoiseTerm::kWhiteNoise, 60.0 * o.inflate),
                "m/s/sqrt(hr)",
                &a,
-               NoiseTerm::kWhiteNoise);
+               NoiseTerm::kWhiteNoise,
+               o.inflate);
   AppendTriple(t,
                f,
                "gbstd",
-               TermOfAxes(g, NoiseTerm::kBiasInstability, kRadToDeg * 3600.0),
+               TermOfAxes(g, NoiseTerm::kBiasInstability, kRadToDeg * 3600.0 * o.inflate),
                "deg/hr",
                &g,
-               NoiseTerm::kBiasInstability);
+               NoiseTerm::kBiasInstability,
+               o.inflate);
   AppendTriple(t,
                f,
                "abstd",
-               TermOfAxes(a, NoiseTerm::kBiasInstability, 1e5),
+               TermOfAxes(a, NoiseTerm::kBiasInstability, 1e5 * o.inflate),
                "mGal",
                &a,
-               NoiseTerm::kBiasInstability);
+               NoiseTerm::kBiasInstability,
+               o.inflate);
   AppendScaleLines(t, f, s.calibration);
   AppendCorrTime(t, f, g, a);
   return f;
 }
 
-ExportedFile WriteRosImu(const ExportSources& src, const ExportOptions&) {
+ExportedFile WriteRosImu(const ExportSources& src, const ExportOptions& o) {
   const NoiseResult& r = src.noise->result;
   const std::string& input = src.noise->input;
   if (!r.gyro_radps)
@@ -341,6 +383,11 @@ ExportedFile WriteRosImu(const ExportSources& src, const ExportOptions&) {
        }) {
     t += FilterCommentLine(line);
   }
+  if (o.inflate != 1.0) {
+    t += FilterCommentLine(
+        InflationLine(o.inflate) +
+        " (N inflated: the variances are its square times the record's)");
+  }
   t += "orientation_covariance: [-1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]\n";
   const struct {
     const char* key;
@@ -349,7 +396,7 @@ ExportedFile WriteRosImu(const ExportSources& src, const ExportOptions&) {
   } sensors[] = {{"angular_velocity_covariance", &*r.gyro_radps, "(rad/s)^2"},
                  {"linear_acceleration_covariance", &r.accel_mps2, "(m/s^2)^2"}};
   for (const auto& s : sensors) {
-    const AxisTriple n = TermOfAxes(*s.sensor, NoiseTerm::kWhiteNoise, 1.0);
+    const AxisTriple n = TermOfAxes(*s.sensor, NoiseTerm::kWhiteNoise, o.inflate);
     std::string bounded;
     for (int i = 0; i < 3; ++i) {
       if (n.bound[i])
@@ -366,12 +413,24 @@ ExportedFile WriteRosImu(const ExportSources& src, const ExportOptions&) {
     }
     double v[3];
     for (int i = 0; i < 3; ++i) v[i] = n.v[i] * n.v[i] * r.rate_hz;
-    t += fmt::format("{}: [{:.6e}, 0.0, 0.0, 0.0, {:.6e}, 0.0, 0.0, 0.0, {:.6e}]  # {}\n",
-                     s.key,
-                     v[0],
-                     v[1],
-                     v[2],
-                     s.unit);
+    const double squared = o.inflate * o.inflate;
+    t += fmt::format(
+        "{}: [{:.6e}, 0.0, 0.0, 0.0, {:.6e}, 0.0, 0.0, 0.0, {:.6e}]  # {}{}\n",
+        s.key,
+        v[0],
+        v[1],
+        v[2],
+        s.unit,
+        o.inflate == 1.0
+            ? std::string()
+            : fmt::format(
+                  "; INFLATED x{:g} (variance x{:g}): the record's [{:.6e}, {:.6e}, "
+                  "{:.6e}]",
+                  o.inflate,
+                  squared,
+                  v[0] / squared,
+                  v[1] / squared,
+                  v[2] / squared));
   }
   return f;
 }

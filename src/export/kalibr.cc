@@ -18,20 +18,23 @@
 namespace mpcal::export_formats {
 namespace {
 
-void NoteBound(const KalibrValue& v, const char* key, std::vector<ExportNote>* notes) {
+void NoteBound(const KalibrFile& k,
+               const KalibrValue& v,
+               const char* key,
+               std::vector<ExportNote>* notes) {
   if (!v.upper_bound) return;
   notes->push_back(
-      ExportNote{ExportNoteKind::kUpperBound, key, v.value, "", v.record_needed_s});
+      ExportNote{ExportNoteKind::kUpperBound, key, k.Written(v), "", v.record_needed_s});
 }
 
 ExportedFile WriteKalibr(const ExportSources& s, const ExportOptions& o) {
-  const KalibrFile k = KalibrYaml(s.noise->result, s.noise->input, o.rostopic);
+  const KalibrFile k = KalibrYaml(s.noise->result, s.noise->input, o.rostopic, o.inflate);
   ExportedFile out;
   out.text = k.text;
-  NoteBound(k.accel_noise_density, "accelerometer_noise_density", &out.notes);
-  NoteBound(k.accel_random_walk, "accelerometer_random_walk", &out.notes);
-  NoteBound(k.gyro_noise_density, "gyroscope_noise_density", &out.notes);
-  NoteBound(k.gyro_random_walk, "gyroscope_random_walk", &out.notes);
+  NoteBound(k, k.accel_noise_density, "accelerometer_noise_density", &out.notes);
+  NoteBound(k, k.accel_random_walk, "accelerometer_random_walk", &out.notes);
+  NoteBound(k, k.gyro_noise_density, "gyroscope_noise_density", &out.notes);
+  NoteBound(k, k.gyro_random_walk, "gyroscope_random_walk", &out.notes);
   return out;
 }
 

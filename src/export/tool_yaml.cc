@@ -115,22 +115,38 @@ std::string YamlMatrixLines(const std::string& key,
 
 namespace {
 
+// A value that is not a measurement says so on its own line, before its key.
 std::string NoiseLine(const std::string& pad,
+                      const KalibrFile& k,
                       const char* key,
                       const KalibrValue& v,
                       const char* unit,
                       std::vector<ExportNote>* notes) {
+  std::string out;
   if (v.upper_bound) {
-    notes->push_back(
-        ExportNote{ExportNoteKind::kUpperBound, key, v.value, unit, v.record_needed_s});
+    notes->push_back(ExportNote{
+        ExportNoteKind::kUpperBound, key, k.Written(v), unit, v.record_needed_s});
+    out += fmt::format(
+        "{}# {} NOT MEASURED: the upper bound from a record too short to show it{}\n",
+        pad,
+        key,
+        v.record_needed_s ? fmt::format(" (record at least {} to measure it)",
+                                        FormatRecordLength(*v.record_needed_s))
+                          : "");
   }
-  return fmt::format("{}{}: {}  # {} ({} axis){}\n",
+  out += fmt::format("{}{}: {}  # {} ({} axis){}\n",
                      pad,
                      key,
-                     v.value,
+                     k.Written(v),
                      unit,
                      static_cast<char>('x' + v.axis),
-                     v.upper_bound ? "; NOT MEASURED: the record's upper bound" : "");
+                     k.inflate == 1.0
+                         ? std::string(v.upper_bound ? "; upper bound" : "")
+                         : fmt::format("; INFLATED x{:g}: the record's {} {}",
+                                       k.inflate,
+                                       v.upper_bound ? "upper bound" : "measured value",
+                                       v.value));
+  return out;
 }
 
 }  // namespace
@@ -149,16 +165,30 @@ std::string NoiseKeyLines(const ExportSources& s,
                               o.rostopic));
     }
   }
-  const KalibrFile k = KalibrYaml(s.noise->result, s.noise->input, o.rostopic);
+  const KalibrFile k = KalibrYaml(s.noise->result, s.noise->input, o.rostopic, o.inflate);
   std::string out;
+  if (k.inflate != 1.0) {
+    out += fmt::format(
+        "{}# INFLATED x{:g} at the user's request (--inflate {:g}): the four noise "
+        "values "
+        "below are {:g} times the record's, which each line's comment gives.\n",
+        pad,
+        k.inflate,
+        k.inflate,
+        k.inflate);
+  }
+  out += NoiseLine(pad,
+                   k,
+                   "accelerometer_noise_density",
+                   k.accel_noise_density,
+                   "m/s^2/sqrt(Hz)",
+                   notes);
   out += NoiseLine(
-      pad, "accelerometer_noise_density", k.accel_noise_density, "m/s^2/sqrt(Hz)", notes);
+      pad, k, "accelerometer_random_walk", k.accel_random_walk, "m/s^3/sqrt(Hz)", notes);
   out += NoiseLine(
-      pad, "accelerometer_random_walk", k.accel_random_walk, "m/s^3/sqrt(Hz)", notes);
+      pad, k, "gyroscope_noise_density", k.gyro_noise_density, "rad/s/sqrt(Hz)", notes);
   out += NoiseLine(
-      pad, "gyroscope_noise_density", k.gyro_noise_density, "rad/s/sqrt(Hz)", notes);
-  out += NoiseLine(
-      pad, "gyroscope_random_walk", k.gyro_random_walk, "rad/s^2/sqrt(Hz)", notes);
+      pad, k, "gyroscope_random_walk", k.gyro_random_walk, "rad/s^2/sqrt(Hz)", notes);
   out += fmt::format("{}rostopic: {}\n", pad, o.rostopic);
   out += fmt::format("{}time_offset: 0.0\n", pad);
   out += fmt::format("{}update_rate: {}  # Hz{}\n",

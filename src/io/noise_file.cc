@@ -553,7 +553,10 @@ auto YamlComment(std::string text) {
 }
 
 // The comment lines that open the Kalibr file, one per line.
-void KalibrHeader(YAML::Emitter& y, const NoiseResult& r, const std::string& input) {
+void KalibrHeader(YAML::Emitter& y,
+                  const NoiseResult& r,
+                  const std::string& input,
+                  double inflate) {
   y << YamlComment(fmt::format("Kalibr IMU noise model, measured by mpcal {} from '{}'",
                                MPCAL_VERSION,
                                input))
@@ -573,8 +576,18 @@ void KalibrHeader(YAML::Emitter& y, const NoiseResult& r, const std::string& inp
       "Kalibr's wiki advises inflating these for a filter (e.g. x10 the noise "
       "densities)",
       "to cover unmodelled effects; these are the measured values, not inflated."};
-  for (const auto* lines : {kDensities, kRule, kInflate}) {
+  const std::string inflated[] = {
+      fmt::format("INFLATED x{:g} at the user's request (--inflate {:g}): each value "
+                  "below is",
+                  inflate,
+                  inflate),
+      fmt::format("{:g} times the record's, which its comment gives.", inflate)};
+  for (const auto* lines : {kDensities, kRule}) {
     for (int i = 0; i < 2; ++i) y << YamlComment(lines[i]) << YAML::Newline;
+  }
+  for (int i = 0; i < 2; ++i) {
+    y << YamlComment(inflate == 1.0 ? std::string(kInflate[i]) : inflated[i])
+      << YAML::Newline;
   }
 }
 
@@ -611,11 +624,24 @@ struct KalibrEntry {
 
 }  // namespace
 
+std::string ValidateInflation(double inflate) {
+  if (std::isfinite(inflate) && inflate >= 1.0) return "";
+  return fmt::format(
+      "the inflation factor is {:g}; it must be a number of at least 1 (1: the "
+      "measured values)",
+      inflate);
+}
+
 KalibrFile KalibrYaml(const NoiseResult& r,
                       const std::string& input,
-                      const std::string& topic) {
+                      const std::string& topic,
+                      double inflate) {
   if (!r.gyro_radps) throw Error("Kalibr's IMU file needs a gyroscope; the log has none");
+  if (const std::string why = ValidateInflation(inflate); !why.empty()) {
+    throw Error(ErrorKind::kOption, why);
+  }
   KalibrFile k;
+  k.inflate = inflate;
   const SensorNoise& a = r.accel_mps2;
   const SensorNoise& g = *r.gyro_radps;
   k.accel_noise_density = Largest(a, NoiseTerm::kWhiteNoise, "accelerometer white noise");
@@ -647,7 +673,7 @@ KalibrFile KalibrYaml(const NoiseResult& r,
   // yaml-cpp quotes and escapes what needs it: a topic with a newline, a '#'
   // or a ':' stays one value.
   YAML::Emitter y;
-  KalibrHeader(y, r, input);
+  KalibrHeader(y, r, input, inflate);
   for (const bool gyro : {false, true}) {
     y << YamlComment(CheckComment(gyro ? g : a, gyro)) << YAML::Newline;
   }
@@ -657,9 +683,16 @@ KalibrFile KalibrYaml(const NoiseResult& r,
   }
   y << YAML::BeginMap;
   for (const KalibrEntry& e : entries) {
-    y << YAML::Key << e.key << YAML::Value << fmt::format("{:.6e}", e.value->value)
-      << YamlComment(
-             fmt::format("{}{}", e.value->upper_bound ? "UPPER BOUND, " : "", e.unit));
+    std::string note =
+        fmt::format("{}{}", e.value->upper_bound ? "UPPER BOUND, " : "", e.unit);
+    if (inflate != 1.0) {
+      note += fmt::format(", INFLATED x{:g}: the record's {} {:.6e}",
+                          inflate,
+                          e.value->upper_bound ? "upper bound" : "measured value",
+                          e.value->value);
+    }
+    y << YAML::Key << e.key << YAML::Value << fmt::format("{:.6e}", k.Written(*e.value))
+      << YamlComment(note);
   }
   y << YAML::Key << "rostopic" << YAML::Value << YAML::DoubleQuoted << topic;
   y << YAML::Key << "update_rate" << YAML::Value << fmt::format("{:.6g}", r.rate_hz)

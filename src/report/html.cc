@@ -60,6 +60,7 @@ svg .zero, svg .reference { stroke: #1a1a1a; stroke-width: 1; stroke-dasharray: 
 svg .band { fill: #9a9a9a; fill-opacity: 0.28; stroke: none; }
 svg .band-excluded { fill: #D55E00; fill-opacity: 0.18; stroke: #D55E00;
   stroke-dasharray: 3 2; stroke-width: 0.8; }
+svg .band-misfit { fill: #CC79A7; fill-opacity: 0.16; stroke: none; }
 svg .stripe { fill: #f4f4f4; }
 svg .bar { fill: #56B4E9; stroke: #1f4e79; stroke-width: 0.8; }
 svg .bar-dark { fill: #1f4e79; stroke: #1a1a1a; stroke-width: 0.8; }

@@ -132,24 +132,82 @@ std::string AllanPlot(const AxisNoise& a, bool gyro, int axis) {
   spec.fills.push_back(band);
   spec.series.push_back(adev);
   if (a.curve.empty()) return LinePlot(spec);
-  // Each measured term alone, dashed, and their sum, over the whole curve.
+  // Where the fitted model lies outside the curve's interval (ModelCheck),
+  // shaded: no term is read there.
+  for (const TauRange& r : a.check.disagree) {
+    spec.bands.push_back({r.lo_s, r.hi_s, "", "band-misfit"});
+  }
+  if (!a.check.disagree.empty()) {
+    spec.extra_legend.push_back({"the model misses the curve (outside its interval)",
+                                 {},
+                                 true,
+                                 "band-misfit",
+                                 false});
+  }
+  // Each measured term's own line (slope −1, −½, 0, +½, +1) drawn over the
+  // cluster times it was read from, not beyond: where the curve supports it.
   Series sum{"sum of the fitted terms", {}, {}, StandardStyle(1), true, false};
   int style = 2;
   for (int i = 0; i < kNoiseTermCount; ++i) {
     const TermEstimate& e = a.terms[i];
     if (!e.value) continue;
-    Series line{
-        fmt::format(
-            "{} = {}", TermName(static_cast<NoiseTerm>(i)), Significant(*e.value, 3)),
-        {},
-        {},
-        StandardStyle(style++),
-        true,
-        false};
+    Series line{fmt::format("{} = {}, read over τ {}",
+                            TermName(static_cast<NoiseTerm>(i)),
+                            Significant(*e.value, 3),
+                            FormatTauRanges({TauRange{e.tau_lo_s, e.tau_hi_s}}, 1)),
+                {},
+                {},
+                StandardStyle(style++),
+                true,
+                false};
     line.style.dash = "5,4";
     for (const AllanPoint& p : a.curve) {
+      if (p.tau_s < e.tau_lo_s || p.tau_s > e.tau_hi_s) continue;
       line.x.push_back(p.tau_s);
       line.y.push_back(TermAdev(static_cast<NoiseTerm>(i), *e.value, p.tau_s));
+    }
+    spec.series.push_back(line);
+  }
+  // The Gauss-Markov bump and the sinusoid, each as its own curve over the
+  // cluster times it was read from.
+  if (a.gauss_markov.sigma) {
+    const GaussMarkovTerm& g = a.gauss_markov;
+    Series line{fmt::format("Gauss-Markov σ = {}, τc = {} s, read over τ {}",
+                            Significant(*g.sigma, 3),
+                            Significant(g.tau_c_s, 3),
+                            FormatTauRanges({TauRange{g.tau_lo_s, g.tau_hi_s}}, 1)),
+                {},
+                {},
+                StandardStyle(style++),
+                true,
+                false};
+    line.style.dash = "5,4";
+    for (const AllanPoint& p : a.curve) {
+      if (p.tau_s < g.tau_lo_s || p.tau_s > g.tau_hi_s) continue;
+      line.x.push_back(p.tau_s);
+      line.y.push_back(
+          std::sqrt(GaussMarkovAvar(*g.sigma * *g.sigma, g.tau_c_s, p.tau_s)));
+    }
+    spec.series.push_back(line);
+  }
+  if (a.sinusoid.amplitude) {
+    const SinusoidTerm& w = a.sinusoid;
+    Series line{fmt::format("sinusoid A = {}, P = {} s, read over τ {}",
+                            Significant(*w.amplitude, 3),
+                            Significant(w.period_s, 3),
+                            FormatTauRanges({TauRange{w.tau_lo_s, w.tau_hi_s}}, 1)),
+                {},
+                {},
+                StandardStyle(style++),
+                true,
+                false};
+    line.style.dash = "5,4";
+    for (const AllanPoint& p : a.curve) {
+      if (p.tau_s < w.tau_lo_s || p.tau_s > w.tau_hi_s) continue;
+      const double v = SinusoidAvar(*w.amplitude * *w.amplitude, w.period_s, p.tau_s);
+      if (!(v > 0.0)) continue;  // its zeros at whole periods: off the log axis
+      line.x.push_back(p.tau_s);
+      line.y.push_back(std::sqrt(v));
     }
     spec.series.push_back(line);
   }
@@ -192,13 +250,13 @@ std::string NoiseSection(const NoiseFile& f) {
     html += fmt::format("<h3>{}</h3>\n", gyro ? "Gyroscope" : "Accelerometer");
     html += TermsTable(*s, gyro);
     for (int axis = 0; axis < 3; ++axis) {
-      html +=
-          Figure(AllanPlot(s->axes[axis], gyro, axis),
-                 fmt::format(
-                     "Allan deviation of the {} {} axis, its confidence band, the fitted "
-                     "terms (dashed) and their sum.",
-                     gyro ? "gyroscope" : "accelerometer",
-                     kAxis[axis]));
+      html += Figure(
+          AllanPlot(s->axes[axis], gyro, axis),
+          fmt::format("Allan deviation of the {} {} axis, its confidence band, each "
+                      "measured term's line (dashed) over the cluster times it was read "
+                      "from, their sum, and shaded where the model misses the curve.",
+                      gyro ? "gyroscope" : "accelerometer",
+                      kAxis[axis]));
     }
   }
   return html + "</section>\n";
