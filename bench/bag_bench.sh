@@ -171,12 +171,13 @@ for f_name in "${files[@]}"; do
 done
 
 # The targets.
-# 1. The binary read of the IMU-only bag is no slower than reading the same
-#    rows as text (detect on the CSV: the same detection after the read).
+# 1. The binary read of the IMU-only bag is faster than reading the same rows
+#    as text: detect on it (the same detection after the read, the same
+#    process start) takes at most 0.8 times detect on the CSV.
 d=$(median detect_imu_lz4.bag 1)
 awk -v d="$d" -v c="$dc" 'BEGIN {
-  printf "IMU-only bag: detect %.3f s, on the CSV %.3f s (ratio %.2f, target <= 1): %s\n",
-    d / 1e6, c / 1e6, d / c, d <= c ? "PASS" : "FAIL" }' | tee -a "$work/verdicts"
+  printf "IMU-only bag: detect %.3f s, on the CSV %.3f s (ratio %.2f, target <= 0.8): %s\n",
+    d / 1e6, c / 1e6, d / c, d <= 0.8 * c ? "PASS" : "FAIL" }' | tee -a "$work/verdicts"
 # 2. Memory does not grow with the recording: each camera file's peak RSS is
 #    within 32 MiB of detect on the CSV (a few chunks: rosbag closes a chunk
 #    past 768 KiB, @mcap/core past 1 MiB; the rows themselves are the same).
