@@ -19,8 +19,9 @@
 #
 # The recordings (~8 GB) are made once into $MPCAL_BAG_BENCH_DIR (default
 # /tmp/mpcal_bag_bench) and kept for the next run; delete that directory to
-# free the space. Each time is the median of REPETITIONS runs (default 3)
-# after a warm-up that puts the file in the page cache.
+# free the space. Each time is the CPU time (user + system) of the command,
+# the median of REPETITIONS runs (default 3) after a warm-up that puts the
+# file in the page cache.
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
 reps=${2:-3}
@@ -92,16 +93,25 @@ else
   echo "bag_bench: the MCAP file is left out (node or npm's @mcap/core not available)"
 fi
 
-# run NAME CMD...: one timed run; appends "µs peak_kB" to $work/NAME. detect
-# exits 1 when the positions are too few to calibrate; only other codes fail.
+# run NAME CMD...: one run; appends "µs peak_kB" to $work/NAME: the CPU time
+# (user + system) and peak RSS of CMD alone, from getrusage of the child (µs
+# resolution). CPU time rather than the wall clock: on a loaded machine the
+# wall clock counts the wait for a core, and favours a command that parses on
+# two threads (detect on a CSV) over one that reads on one (a bag), as
+# `perf stat -e task-clock` does not. detect exits 1 when the positions are
+# too few to calibrate; only other codes fail.
 run() {
   local name=$1; shift
-  local t0 t1 rc=0
-  t0=$(date +%s%N)
-  /usr/bin/time -f '%M' -o "$work/rss" "$@" >/dev/null 2>"$work/stderr" || rc=$?
-  t1=$(date +%s%N)
+  local rc=0
+  "$rosbag_python" - "$@" >"$work/usage" 2>"$work/stderr" <<'PY' || rc=$?
+import resource, subprocess, sys
+p = subprocess.run(sys.argv[1:], stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL)
+r = resource.getrusage(resource.RUSAGE_CHILDREN)
+print(round((r.ru_utime + r.ru_stime) * 1e6), r.ru_maxrss)
+sys.exit(p.returncode)
+PY
   if [ "$rc" -gt 1 ]; then cat "$work/stderr" >&2; exit 1; fi
-  echo "$(((t1 - t0) / 1000)) $(tail -n1 "$work/rss")" >>"$work/$name"
+  cat "$work/usage" >>"$work/$name"
 }
 # The bytes of a recording: the file, or a ROS 2 bag directory's database.
 data_of() { if [ -d "$1" ]; then echo "$1/$(basename "$1")_0.db3"; else echo "$1"; fi; }
@@ -145,7 +155,7 @@ dc=$(median detect_csv 1)
 dc_kb=$(median detect_csv 2)
 printf 'session: %d IMU rows at 400 Hz (%s, %.1f MB as CSV); median of %d runs\n' "$rows" \
   "$(basename "$csv")" "$(awk -v b="$(stat -c %s "$csv")" 'BEGIN {print b / 1e6}')" "$reps"
-printf '%-30s %9s %9s %9s %9s %10s %10s\n' "" "size (MB)" "time (s)" "/floor" "/cat" \
+printf '%-30s %9s %9s %9s %9s %10s %10s\n' "" "size (MB)" "CPU (s)" "/floor" "/cat" \
   "read (MB)" "peak (MiB)"
 printf '%-30s %9s %9s %9s %9s %10s %10s\n' "floor: CSV read + fast_float" \
   "$(awk -v b="$(stat -c %s "$csv")" 'BEGIN {printf "%.0f", b / 1e6}')" "$(fmt_s "$f")" \
@@ -171,12 +181,13 @@ for f_name in "${files[@]}"; do
 done
 
 # The targets.
-# 1. The binary read of the IMU-only bag is no slower than reading the same
-#    rows as text (detect on the CSV: the same detection after the read).
+# 1. The binary read of the IMU-only bag is faster than reading the same rows
+#    as text: detect on it (the same detection after the read, the same
+#    process start) takes at most 0.8 times detect on the CSV.
 d=$(median detect_imu_lz4.bag 1)
 awk -v d="$d" -v c="$dc" 'BEGIN {
-  printf "IMU-only bag: detect %.3f s, on the CSV %.3f s (ratio %.2f, target <= 1): %s\n",
-    d / 1e6, c / 1e6, d / c, d <= c ? "PASS" : "FAIL" }' | tee -a "$work/verdicts"
+  printf "IMU-only bag: detect %.3f s CPU, on the CSV %.3f s (ratio %.2f, target <= 0.8): %s\n",
+    d / 1e6, c / 1e6, d / c, d <= 0.8 * c ? "PASS" : "FAIL" }' | tee -a "$work/verdicts"
 # 2. Memory does not grow with the recording: each camera file's peak RSS is
 #    within 32 MiB of detect on the CSV (a few chunks: rosbag closes a chunk
 #    past 768 KiB, @mcap/core past 1 MiB; the rows themselves are the same).
@@ -193,7 +204,7 @@ done <"$work/results" | tee -a "$work/verdicts"
 while read -r f_name _ d _ c _; do
   [[ $f_name == camera_* ]] || continue
   awk -v n="$f_name" -v d="$d" -v c="$c" 'BEGIN {
-    printf "%s: detect %.3f s, cat %.3f s (ratio %.2f, target <= 3): %s\n", n, d / 1e6,
+    printf "%s: detect %.3f s CPU, cat %.3f s (ratio %.2f, target <= 3): %s\n", n, d / 1e6,
       c / 1e6, d / c, d <= 3 * c ? "PASS" : "FAIL" }'
 done <"$work/results" | tee -a "$work/verdicts"
 echo "load average: $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores"

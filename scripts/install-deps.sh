@@ -23,6 +23,7 @@ demo=(
   libsqlite3-dev       # ROS 2 bags (*.db3)
   libzstd-dev          # MCAP zstd chunks
   liblz4-dev           # ROS 1 and MCAP lz4 chunks (the LZ4 frame format)
+  libxxhash-dev        # the LZ4 frame's content checksum (XXH32), header only
   libbz2-dev           # ROS 1 bz2 chunks
   zlib1g-dev           # MCAP chunks' CRC-32
   libserialport-dev    # serial ports for live sessions (src/record)

@@ -30,6 +30,12 @@ BagFile::BagFile(const std::string& path) : path_(path) {
 
 BagFile::~BagFile() { ::close(fd_); }
 
+void ByteCursor::ThrowShort(std::uint64_t n, const char* what) const {
+  throw DataError(std::string(what) + " needs " + std::to_string(n) +
+                  " bytes at offset " + std::to_string(pos_) + " but " +
+                  std::to_string(remaining()) + " remain");
+}
+
 void ByteBuffer::Free::operator()(char* p) const { std::free(p); }
 
 void ByteBuffer::Resize(std::size_t n) {

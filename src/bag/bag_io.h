@@ -32,12 +32,11 @@ class ByteCursor {
   bool empty() const { return pos_ == data_.size(); }
 
   std::string_view Bytes(std::uint64_t n, const char* what) {
-    if (n > remaining()) {
-      throw DataError(std::string(what) + " needs " + std::to_string(n) +
-                      " bytes at offset " + std::to_string(pos_) + " but " +
-                      std::to_string(remaining()) + " remain");
-    }
-    const std::string_view out = data_.substr(pos_, n);
+    // Called for every field of every message: the check stays inline, the
+    // message it throws is built out of line.
+    if (n > remaining()) [[unlikely]]
+      ThrowShort(n, what);
+    const std::string_view out(data_.data() + pos_, n);
     pos_ += n;
     return out;
   }
@@ -51,13 +50,13 @@ class ByteCursor {
   template <typename T>
   T Read(const char* what, bool big_endian = false) {
     const std::string_view b = Bytes(sizeof(T), what);
-    unsigned char raw[sizeof(T)];
-    std::memcpy(raw, b.data(), sizeof(T));
-    if (big_endian) {
-      for (std::size_t i = 0; i < sizeof(T) / 2; ++i)
-        std::swap(raw[i], raw[sizeof(T) - 1 - i]);
-    }
     T value;
+    if (!big_endian) {
+      std::memcpy(&value, b.data(), sizeof(T));
+      return value;
+    }
+    unsigned char raw[sizeof(T)];
+    for (std::size_t i = 0; i < sizeof(T); ++i) raw[i] = b[sizeof(T) - 1 - i];
     std::memcpy(&value, raw, sizeof(T));
     return value;
   }
@@ -67,6 +66,8 @@ class ByteCursor {
   std::uint64_t U64(const char* what) { return Read<std::uint64_t>(what); }
 
  private:
+  [[noreturn]] void ThrowShort(std::uint64_t n, const char* what) const;
+
   std::string_view data_;
   std::size_t pos_ = 0;
 };

@@ -117,10 +117,19 @@ void WalkChunk(std::string_view records, const Visitor& v) {
   }
 }
 
+// A chunk as read and as unpacked, kept from one chunk to the next: a fresh
+// megabyte buffer for each would be mapped, faulted in page by page and
+// returned to the system again.
+struct ChunkBuffers {
+  ByteBuffer body;
+  ByteBuffer unpacked;
+};
+
 void VisitChunk(BagFile& file,
                 std::uint64_t offset,
                 const RecordSpan& r,
-                const Visitor& v) {
+                const Visitor& v,
+                ChunkBuffers& buffers) {
   // The fixed fields and the compression's length come before anything large.
   const std::string fixed = file.ReadAt(
       r.body_offset, std::min<std::uint64_t>(r.body_length, 32), "the chunk header");
@@ -138,12 +147,14 @@ void VisitChunk(BagFile& file,
   }
   if (v.open_chunk && !v.open_chunk(offset)) return;
   if (r.body_length > kBagMaxChunkBytes) throw DataError("a chunk above the size cap");
-  ByteBuffer body, unpacked;
   const ChunkHeader h =
-      ParseChunk(file.ReadInto(r.body_offset, r.body_length, "the chunk", body));
+      ParseChunk(file.ReadInto(r.body_offset, r.body_length, "the chunk", buffers.body));
   // A chunk with a CRC (0 means none) is checked once, by it, below.
-  const std::string_view records = Decompress(
-      h.compression, h.records, h.uncompressed_size, unpacked, h.uncompressed_crc != 0);
+  const std::string_view records = Decompress(h.compression,
+                                              h.records,
+                                              h.uncompressed_size,
+                                              buffers.unpacked,
+                                              h.uncompressed_crc != 0);
   if (h.uncompressed_crc != 0 && Crc32(records) != h.uncompressed_crc) {
     throw DataError("the CRC-32 of the unpacked records does not match the chunk's");
   }
@@ -154,10 +165,11 @@ void VisitChunk(BagFile& file,
 bool VisitRecord(BagFile& file,
                  std::uint64_t offset,
                  const RecordSpan& r,
-                 const Visitor& v) {
+                 const Visitor& v,
+                 ChunkBuffers& buffers) {
   if (r.op == kDataEnd || r.op == kFooter) return false;
   if (r.op == kChunk) {
-    VisitChunk(file, offset, r, v);
+    VisitChunk(file, offset, r, v, buffers);
     return true;
   }
   if (r.op != kSchema && r.op != kChannel && r.op != kMessage && r.op != kMessageIndex) {
@@ -176,6 +188,7 @@ void Walk(BagFile& file,
           const Opened& opened,
           const Visitor& v,
           std::vector<std::string>& warnings) {
+  ChunkBuffers buffers;
   for (std::uint64_t offset = kMagic.size(); offset < opened.data_end;) {
     RecordSpan r;
     try {
@@ -190,7 +203,7 @@ void Walk(BagFile& file,
       return;
     }
     try {
-      if (!VisitRecord(file, offset, r, v)) return;
+      if (!VisitRecord(file, offset, r, v, buffers)) return;
     } catch (const DataError& e) {
       ThrowBagError(
           file.path(),

@@ -1,7 +1,5 @@
 #include "bag/mcap_records.h"
 
-#include <zlib.h>
-
 #include <algorithm>
 
 #include "mpcal/bag.h"
@@ -127,13 +125,6 @@ std::uint16_t ParseMessageIndex(std::string_view body,
     ++count;
   }
   return channel;
-}
-
-std::uint32_t Crc32(std::string_view data) {
-  // zlib's crc32 takes several bytes a step; a byte-at-a-time table would
-  // take longer over an unpacked chunk than unpacking it.
-  return static_cast<std::uint32_t>(
-      crc32_z(0, reinterpret_cast<const Bytef*>(data.data()), data.size()));
 }
 
 }  // namespace mpcal::bag::mcap

@@ -142,7 +142,19 @@ std::string RecordData(BagFile& file, const Record& r) {
   return file.ReadAt(r.data_offset, r.data_length, "the record data");
 }
 
-void VisitRecord(BagFile& file, std::uint64_t offset, const Record& r, const Visitor& v) {
+// A chunk as read and as unpacked, kept from one chunk to the next: a fresh
+// megabyte buffer for each would be mapped, faulted in page by page and
+// returned to the system again.
+struct ChunkBuffers {
+  ByteBuffer packed;
+  ByteBuffer unpacked;
+};
+
+void VisitRecord(BagFile& file,
+                 std::uint64_t offset,
+                 const Record& r,
+                 const Visitor& v,
+                 ChunkBuffers& buffers) {
   switch (r.op) {
     case ros1::kChunk: {
       const std::string compression = ros1::StringField(r.fields, "compression");
@@ -154,13 +166,12 @@ void VisitRecord(BagFile& file, std::uint64_t offset, const Record& r, const Vis
       if (v.open_chunk && !v.open_chunk(offset)) return;
       if (r.data_length > kBagMaxChunkBytes)
         throw DataError("a chunk above the size cap");
-      ByteBuffer packed, unpacked;
-      WalkChunk(
-          Decompress(compression,
-                     file.ReadInto(r.data_offset, r.data_length, "the chunk", packed),
-                     ros1::U32Field(r.fields, "size"),
-                     unpacked),
-          v);
+      WalkChunk(Decompress(compression,
+                           file.ReadInto(
+                               r.data_offset, r.data_length, "the chunk", buffers.packed),
+                           ros1::U32Field(r.fields, "size"),
+                           buffers.unpacked),
+                v);
       return;
     }
     case ros1::kConnection:
@@ -184,6 +195,7 @@ void Walk(BagFile& file,
           const Visitor& v,
           std::vector<std::string>& warnings) {
   std::uint64_t offset = opened.first_record;
+  ChunkBuffers buffers;
   while (offset < file.size()) {
     Record r;
     try {
@@ -196,7 +208,7 @@ void Walk(BagFile& file,
       return;
     }
     try {
-      VisitRecord(file, offset, r, v);
+      VisitRecord(file, offset, r, v, buffers);
     } catch (const DataError& e) {
       ThrowBagError(file.path(),
                     (r.op == ros1::kChunk ? "chunk at " : "record at ") + At(offset) +

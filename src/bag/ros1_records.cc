@@ -18,6 +18,15 @@ std::string_view Need(const Fields& fields, std::string_view name, std::size_t s
   return *value;
 }
 
+// Whether `field` starts with `name`: a loop rather than memcmp, which for
+// names of two to nine bytes costs more in the call than in the comparison.
+bool SameName(std::string_view field, std::string_view name) {
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    if (field[i] != name[i]) return false;
+  }
+  return true;
+}
+
 void CheckFields(std::string_view header) {
   ByteCursor c(header);
   while (!c.empty()) {
@@ -57,7 +66,7 @@ std::optional<std::string_view> Fields::Find(std::string_view name) const {
     const std::string_view field = header.substr(pos + sizeof length, length);
     pos += sizeof length + length;
     if (field.size() > name.size() && field[name.size()] == '=' &&
-        field.starts_with(name)) {
+        SameName(field, name)) {
       found = field.substr(name.size() + 1);
     }
   }

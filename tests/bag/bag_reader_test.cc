@@ -377,6 +377,24 @@ TEST(ReadImuMessages, McapLz4ChunkDamageIsFoundByTheCrc) {
       ::testing::AllOf(HasSubstr("lz4crc.mcap: chunk at byte"), HasSubstr("CRC-32")));
 }
 
+// A ROS 1 chunk has no CRC: its LZ4 frame's content checksum (XXH32) is the
+// only guard. A damaged literal still unpacks to the chunk's size, and the
+// checksum finds it.
+TEST(ReadImuMessages, Ros1Lz4ChunkDamageIsFoundByTheFrameChecksum) {
+  ScratchDir dir;
+  std::string bag = ReadFile(Bag("imu_lz4.bag"));  // rosbag's roslz4 frames
+  const std::size_t chunk = FindNth(bag, "compression=lz4", 3);
+  const std::size_t literal = bag.find("imu_link", chunk);
+  ASSERT_NE(literal, std::string::npos);
+  std::vector<std::string> w;
+  // Undamaged, the frame's checksum holds.
+  EXPECT_EQ(ReadAll(dir.Write("good.bag", bag), w).size(), kRows);
+  bag[literal] = 'J';
+  EXPECT_THAT(Error([&] { ReadAll(dir.Write("xxh.bag", bag), w); }),
+              ::testing::AllOf(HasSubstr("xxh.bag: chunk at byte"),
+                               HasSubstr("content checksum")));
+}
+
 // A chunk that claims more than the cap is refused before anything is
 // allocated for it.
 TEST(ReadImuMessages, AChunkSizeAboveTheCapIsRefused) {
