@@ -25,7 +25,8 @@ demo=(
   liblz4-dev           # ROS 1 and MCAP lz4 chunks (the LZ4 frame format)
   libxxhash-dev        # the LZ4 frame's content checksum (XXH32), header only
   libbz2-dev           # ROS 1 bz2 chunks
-  zlib1g-dev           # MCAP chunks' CRC-32
+  libisal-dev          # MCAP chunks' CRC-32 (Intel ISA-L)
+  zlib1g-dev           # zlib's crc32, the reference the CRC-32 is tested against
   libserialport-dev    # serial ports for live sessions (src/record)
 )
 # The Debian package (cmake/MpcalPackage.cmake).
