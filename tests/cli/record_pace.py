@@ -5,9 +5,8 @@
 
 The lines go to standard output, or to the one client that connects to a
 TCP port on 127.0.0.1 (its number written to PORTFILE), or into a device
-(a pseudo-terminal standing in for a serial port). --boot sends a serial
-port's boot text and a line cut in half before the log, as a sensor that
-was already running when the port was opened. Stops quietly when the
+(a pseudo-terminal standing in for a serial port). --boot sends a line cut in half (the port opened
+mid-line) and a sensor's boot text before the log. Stops quietly when the
 reader goes away.
 """
 import argparse
@@ -33,11 +32,11 @@ def lines_with_time(path):
 
 def feed(write, lines, speed, boot):
     if boot:
-        write(b"\r\nets Jun  8 2016 00:22:57\r\nrst:0x1 (POWERON_RESET),boot:0x13\r\n"
-              b"IMU ready\r\n")
         data = [raw for t, raw in lines if t is not None]
         if data:
             write(data[0][len(data[0]) // 2:])  # the tail of a line cut in half
+        write(b"ets Jun  8 2016 00:22:57\r\nrst:0x1 (POWERON_RESET),boot:0x13\r\n"
+              b"IMU ready\r\n")
     start = time.monotonic()
     t0 = None
     batch = []
