@@ -51,6 +51,8 @@ develop=(
   clang-tidy           # bug-prone patterns and function size, scripts/lint.sh
   man-db groff-base    # the man pages rendered without a warning (tests/cli/man_pages.sh)
   zsh                  # the zsh completion checked (tests/cli/completion_zsh.zsh)
+  socat                # a pseudo-terminal pair standing in for a serial port (tests/cli/record_serial.sh)
+  tmux                 # the live screen of record driven and read (tests/cli/record_screen.sh)
   python3-pytest       # its tests (tests/python/)
   python3-matplotlib   # its example (examples/python/), drawn without a display
 )

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "calibrate_run.h"
 #include "calibration_table.h"
 #include "cli_options.h"
 #include "command.h"
@@ -26,16 +27,6 @@
 
 namespace mpcal::cli {
 namespace {
-
-struct CalibrateFlags {
-  std::string input;
-  std::string output;
-  GyroLogFlags gyro_log;
-  LogOptions log;
-  GravityFlags gravity;
-  CalibrateOptions calibrate;
-  bool verbose = false;
-};
 
 // The options that shaped the result, as a command line a user can rerun.
 std::string DescribeOptions(const CalibrateFlags& f) {
@@ -105,7 +96,9 @@ std::optional<Calibration::InputLayout> RecordedLayout(const std::string& input,
   return out;
 }
 
-void Run(CalibrateFlags& f) {
+}  // namespace
+
+void RunCalibrate(CalibrateFlags& f) {
   if (!f.output.empty()) CheckOutput(f.output, {f.input, f.gyro_log.path});
   f.calibrate.solve.gravity_mps2 = f.gravity.Resolve();
   ThrowIfInvalid(f.calibrate.Validate(), "calibrate");
@@ -178,8 +171,6 @@ void Run(CalibrateFlags& f) {
   }
 }
 
-}  // namespace
-
 void AddCalibrateCommand(CLI::App& root) {
   auto flags = std::make_shared<CalibrateFlags>();
   CLI::App* app = root.add_subcommand(
@@ -242,7 +233,7 @@ void AddCalibrateCommand(CLI::App& root) {
       "The table is followed by one line per check: good, look at (usable, but read "
       "why) or do not use. Verdicts and warnings are coloured on a terminal; set "
       "NO_COLOR=1 for plain text.");
-  app->callback([flags] { Run(*flags); });
+  app->callback([flags] { RunCalibrate(*flags); });
 }
 
 }  // namespace mpcal::cli

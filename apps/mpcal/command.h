@@ -29,5 +29,6 @@ void AddNoiseCommand(CLI::App& root);
 void AddInspectCommand(CLI::App& root);
 void AddExportCommand(CLI::App& root);
 void AddImportCommand(CLI::App& root);
+void AddRecordCommand(CLI::App& root);
 
 }  // namespace mpcal::cli

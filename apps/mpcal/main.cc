@@ -140,6 +140,7 @@ int Run(int argc, char** argv) {
   mpcal::cli::AddInspectCommand(app);
   mpcal::cli::AddExportCommand(app);
   mpcal::cli::AddImportCommand(app);
+  mpcal::cli::AddRecordCommand(app);
 
   // Bare `mpcal`: the help, then the error; an unknown word: say so. (CLI11
   // says "A subcommand is required" to both.)

@@ -14,14 +14,13 @@
 #include "motion_statistic.h"
 #include "mpcal/detect.h"
 #include "mpcal/error.h"
+#include "mpcal/still_windows.h"
 #include "mpcal/systematic_sample.h"
 #include "mpcal/units.h"
 
 namespace mpcal {
 namespace {
 
-// Rows the sample period (and so the window) is taken from.
-constexpr std::size_t kPeriodRows = 4096;
 // Rows taken into the buffer at a time, and rows dropped from its front at
 // once: the buffer stays under a window plus twice this.
 constexpr std::size_t kSliceRows = 8192;
@@ -29,11 +28,20 @@ constexpr std::size_t kSliceRows = 8192;
 constexpr std::size_t kMaxKept = std::size_t{1} << 17;
 // Named as DetectStatic names a recording without a source.
 constexpr const char* kSource = "recording";
+// Rows the sample period (and so the window) is taken from, by default.
+constexpr std::size_t kPeriodRows = 4096;
 
 }  // namespace
 
-struct StillnessMonitor::State {
+namespace internal {
+
+// The rule's state, shared by StillnessMonitor (the verdict) and
+// StillWindows (every window as it is judged).
+struct MonitorCore {
   DetectOptions options;
+  std::size_t period_rows = kPeriodRows;
+  // Where the windows judged go (StillWindows), or nowhere.
+  std::vector<StillWindow>* judged = nullptr;
   bool counts = false;
   double one_g = 0.0;        // one g in the recording's units
   double range_limit = 0.0;  // |a_k| at or beyond this: at the range limit
@@ -150,7 +158,7 @@ struct StillnessMonitor::State {
     // The first rows only, however many the first pieces brought.
     const std::vector<double> first(
         t.begin(),
-        t.begin() + static_cast<std::ptrdiff_t>(std::min(t.size(), kPeriodRows)));
+        t.begin() + static_cast<std::ptrdiff_t>(std::min(t.size(), period_rows)));
     period_s = first.size() > 1 ? internal::TypicalPeriod(first) : 0.0;
     half = internal::HalfWindowFor(options.window_s, period_s, kSource);
     next_centre = half;
@@ -165,6 +173,7 @@ struct StillnessMonitor::State {
     }
     kept.Add(v);
     ++windows;
+    if (judged != nullptr) judged->push_back({base + c, t[c], a[c], v});
   }
 
   // Judges every window now complete, then drops the rows no window needs
@@ -191,9 +200,12 @@ struct StillnessMonitor::State {
   }
 
   StillVerdict VerdictOfSized() const;
+  void Init(const DetectOptions& o, AccelUnits units, std::size_t period);
+  void Add(std::span<const double> time_s, std::span<const Eigen::Vector3d> accel);
+  StillVerdict Verdict() const;
 };
 
-StillVerdict StillnessMonitor::State::VerdictOfSized() const {
+StillVerdict MonitorCore::VerdictOfSized() const {
   StillVerdict v;
   v.window_samples = 2 * half + 1;
   v.sample_period_s = period_s;
@@ -223,28 +235,38 @@ StillVerdict StillnessMonitor::State::VerdictOfSized() const {
   return v;
 }
 
-StillnessMonitor::StillnessMonitor(const DetectOptions& options, AccelUnits units)
-    : state_(std::make_unique<State>()) {
-  if (const std::string bad = options.Validate(); !bad.empty()) {
+void MonitorCore::Init(const DetectOptions& o, AccelUnits units, std::size_t period) {
+  if (const std::string bad = o.Validate(); !bad.empty()) {
     throw Error(ErrorKind::kOption, "static detection options: " + bad);
   }
-  State& s = *state_;
-  s.options = options;
+  options = o;
+  period_rows = std::max<std::size_t>(period, 2);
   const auto mps2_per_unit = FixedMps2PerUnit(units);
-  s.counts = !mps2_per_unit.has_value();
-  if (s.counts) return;
-  s.one_g = kStandardGravityMps2 / *mps2_per_unit;
-  s.range_limit = options.range_mps2 > 0.0
-                      ? 0.99 * options.range_mps2 / kStandardGravityMps2 * s.one_g
-                      : 1.5 * s.one_g;
+  counts = !mps2_per_unit.has_value();
+  if (counts) return;
+  one_g = kStandardGravityMps2 / *mps2_per_unit;
+  range_limit = o.range_mps2 > 0.0 ? 0.99 * o.range_mps2 / kStandardGravityMps2 * one_g
+                                   : 1.5 * one_g;
+}
+
+}  // namespace internal
+
+struct StillnessMonitor::State : internal::MonitorCore {};
+struct StillWindows::State : internal::MonitorCore {};
+
+StillnessMonitor::StillnessMonitor(const DetectOptions& options, AccelUnits units)
+    : state_(std::make_unique<State>()) {
+  state_->Init(options, units, kPeriodRows);
 }
 
 StillnessMonitor::~StillnessMonitor() = default;
 StillnessMonitor::StillnessMonitor(StillnessMonitor&&) noexcept = default;
 StillnessMonitor& StillnessMonitor::operator=(StillnessMonitor&&) noexcept = default;
 
-void StillnessMonitor::Add(std::span<const double> time_s,
-                           std::span<const Eigen::Vector3d> accel) {
+namespace internal {
+
+void MonitorCore::Add(std::span<const double> time_s,
+                      std::span<const Eigen::Vector3d> accel) {
   if (time_s.size() != accel.size()) {
     throw Error(ErrorKind::kInput,
                 fmt::format("{}: {} timestamps but {} accelerometer readings",
@@ -252,34 +274,68 @@ void StillnessMonitor::Add(std::span<const double> time_s,
                             time_s.size(),
                             accel.size()));
   }
-  State& s = *state_;
-  if (s.counts) return;
-  for (std::size_t b = 0; b < time_s.size() && !s.stopped; b += kSliceRows) {
+  if (counts) return;
+  for (std::size_t b = 0; b < time_s.size() && !stopped; b += kSliceRows) {
     const std::size_t e = std::min(time_s.size(), b + kSliceRows);
     const auto ts = time_s.subspan(b, e - b);
     const auto as = accel.subspan(b, e - b);
-    if (s.Plain(ts, as)) {
-      s.TakeRows(ts, as);
+    if (Plain(ts, as)) {
+      TakeRows(ts, as);
     } else {
       for (std::size_t i = 0; i < ts.size(); ++i) {
-        if (!s.TakeRow(ts[i], as[i])) break;
+        if (!TakeRow(ts[i], as[i])) break;
       }
     }
-    if (s.half == 0 && s.rows >= kPeriodRows) s.SizeWindow();
-    s.JudgeWindows();
+    if (half == 0 && rows >= period_rows) SizeWindow();
+    JudgeWindows();
   }
 }
 
-StillVerdict StillnessMonitor::Verdict() const {
-  const State& s = *state_;
-  if (s.counts) return {};
-  if (s.half > 0) return s.VerdictOfSized();
+StillVerdict MonitorCore::Verdict() const {
+  if (counts) return {};
+  if (half > 0) return VerdictOfSized();
   // Fewer rows than the period is taken from: the window from all of them,
-  // on a copy (a few thousand rows at most).
-  State sized = s;
+  // on a copy (a few thousand rows at most) that reports no window.
+  MonitorCore sized = *this;
+  sized.judged = nullptr;
   sized.SizeWindow();
   sized.JudgeWindows();
   return sized.VerdictOfSized();
 }
+
+}  // namespace internal
+
+void StillnessMonitor::Add(std::span<const double> time_s,
+                           std::span<const Eigen::Vector3d> accel) {
+  state_->Add(time_s, accel);
+}
+
+StillVerdict StillnessMonitor::Verdict() const { return state_->Verdict(); }
+
+StillWindows::StillWindows(const DetectOptions& options,
+                           AccelUnits units,
+                           std::size_t period_rows)
+    : state_(std::make_unique<State>()) {
+  state_->Init(options, units, period_rows);
+}
+
+StillWindows::~StillWindows() = default;
+StillWindows::StillWindows(StillWindows&&) noexcept = default;
+StillWindows& StillWindows::operator=(StillWindows&&) noexcept = default;
+
+void StillWindows::Add(std::span<const double> time_s,
+                       std::span<const Eigen::Vector3d> accel,
+                       std::vector<StillWindow>* judged) {
+  state_->judged = judged;
+  try {
+    state_->Add(time_s, accel);
+  } catch (...) {
+    state_->judged = nullptr;
+    throw;
+  }
+  state_->judged = nullptr;
+}
+
+StillVerdict StillWindows::Verdict() const { return state_->Verdict(); }
 
 }  // namespace mpcal
