@@ -66,7 +66,9 @@ void ExpectSameRows(const Recording& a, const Recording& b) {
   for (std::size_t i = 0; i < a.size(); ++i) {
     ASSERT_EQ(a.time_s[i], b.time_s[i]) << "row " << i;
     ASSERT_EQ(a.accel[i], b.accel[i]) << "row " << i;
-    if (!a.gyro_radps.empty()) ASSERT_EQ(a.gyro_radps[i], b.gyro_radps[i]) << "row " << i;
+    if (!a.gyro_radps.empty()) {
+      ASSERT_EQ(a.gyro_radps[i], b.gyro_radps[i]) << "row " << i;
+    }
   }
   EXPECT_EQ(a.units, b.units);
   EXPECT_EQ(a.gyro_units, b.gyro_units);
