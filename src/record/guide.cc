@@ -24,46 +24,42 @@ constexpr std::size_t kPeriodRows = 256;
 // The gyroscope's rows kept for a turn (s): a longer turn is not counted.
 constexpr double kKeepTurnS = 120.0;
 
-// One row kept: its time, reading, gyroscope, and the time missing before
-// it (steps longer than the window: no samples, not motion).
-struct Row {
-  double t = 0.0;
-  Eigen::Vector3d a = Eigen::Vector3d::Zero();
-  Eigen::Vector3d g = Eigen::Vector3d::Zero();
-  double missing_before_s = 0.0;
-};
-
-// Sums of the samples of one position (readings about its first).
-struct Sums {
-  Eigen::Vector3d ref = Eigen::Vector3d::Zero();
-  Eigen::Vector3d s1 = Eigen::Vector3d::Zero();
-  Eigen::Vector3d s2 = Eigen::Vector3d::Zero();
-  Eigen::Vector3d g1 = Eigen::Vector3d::Zero();
-  std::size_t n = 0;
-
-  void Add(const Eigen::Vector3d& a, const Eigen::Vector3d& g) {
-    if (n == 0) ref = a;
-    const Eigen::Vector3d d = a - ref;
-    s1 += d;
-    s2 += d.cwiseAbs2();
-    g1 += g;
-    ++n;
-  }
-  Eigen::Vector3d Mean() const { return ref + s1 / static_cast<double>(n); }
-  Eigen::Vector3d Std() const {
-    if (n < 2) return Eigen::Vector3d::Zero();
-    const double nn = static_cast<double>(n);
-    return ((s2 - s1.cwiseAbs2() / nn) / (nn - 1.0)).cwiseMax(0.0).cwiseSqrt();
-  }
-};
-
-double AngleDeg(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
-  return std::acos(std::clamp(u.normalized().dot(v.normalized()), -1.0, 1.0)) * kRadToDeg;
-}
-
 }  // namespace
 
 struct SessionGuide::State {
+  // One row kept: its time, reading, gyroscope, and the time missing before
+  // it (steps longer than the window: no samples, not motion).
+  struct Row {
+    double t = 0.0;
+    Eigen::Vector3d a = Eigen::Vector3d::Zero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    double missing_before_s = 0.0;
+  };
+
+  // Sums of the samples of one position (readings about its first).
+  struct Sums {
+    Eigen::Vector3d ref = Eigen::Vector3d::Zero();
+    Eigen::Vector3d s1 = Eigen::Vector3d::Zero();
+    Eigen::Vector3d s2 = Eigen::Vector3d::Zero();
+    Eigen::Vector3d g1 = Eigen::Vector3d::Zero();
+    std::size_t n = 0;
+
+    void Add(const Eigen::Vector3d& a, const Eigen::Vector3d& g) {
+      if (n == 0) ref = a;
+      const Eigen::Vector3d d = a - ref;
+      s1 += d;
+      s2 += d.cwiseAbs2();
+      g1 += g;
+      ++n;
+    }
+    Eigen::Vector3d Mean() const { return ref + s1 / static_cast<double>(n); }
+    Eigen::Vector3d Std() const {
+      if (n < 2) return Eigen::Vector3d::Zero();
+      const double nn = static_cast<double>(n);
+      return ((s2 - s1.cwiseAbs2() / nn) / (nn - 1.0)).cwiseMax(0.0).cwiseSqrt();
+    }
+  };
+
   GuideOptions options;
   StillWindows monitor;
   std::vector<StillWindow> judged;
@@ -206,7 +202,8 @@ void SessionGuide::State::StartPiece(const StillWindow& w) {
         r != nullptr ? r->missing_before_s - last_commit_missing_s : 0.0;
     const double bump_s =
         w.centre_s - building.end_s - missing - 2.0 * d.settle_s - d.window_s;
-    if (bump_s < d.merge_gap_s && AngleDeg(sums.Mean(), w.reading) < d.merge_angle_deg) {
+    if (bump_s < d.merge_gap_s &&
+        internal::AngleDeg(sums.Mean(), w.reading) < d.merge_angle_deg) {
       return;
     }
   }

@@ -13,12 +13,6 @@
 namespace mpcal {
 namespace {
 
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
-
-double AngleDeg(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
-  return std::acos(std::clamp(u.normalized().dot(v.normalized()), -1.0, 1.0)) * kRadToDeg;
-}
-
 bool Finite(double v) { return std::isfinite(v); }
 
 BoundPosition AsBoundPosition(const Eigen::Vector3d& direction,
@@ -101,6 +95,11 @@ GuideBound BoundOf(std::span<const GuidePosition> positions,
 }
 
 namespace internal {
+
+double AngleDeg(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  return std::acos(std::clamp(u.normalized().dot(v.normalized()), -1.0, 1.0)) * 180.0 /
+         std::numbers::pi;
+}
 
 int NearestCube(const Eigen::Vector3d& direction, double* off_deg) {
   const auto& cube = CanonicalDirections();

@@ -14,6 +14,9 @@
 
 namespace mpcal::internal {
 
+/// The angle between two vectors (deg).
+double AngleDeg(const Eigen::Vector3d& u, const Eigen::Vector3d& v);
+
 /// The nearest of the 26 cube directions to unit vector `direction` (index
 /// into CanonicalDirections()) and the angle to it (deg).
 int NearestCube(const Eigen::Vector3d& direction, double* off_deg);
