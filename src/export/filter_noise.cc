@@ -42,9 +42,8 @@ std::string RecordText(const NoiseResult& r, const std::string& input) {
 std::string InflationLine(double inflate) {
   if (inflate == 1.0) return "measured, not inflated.";
   return fmt::format(
-      "INFLATED x{:g} at the user's request (--inflate {:g}): each noise value below is "
+      "INFLATED x{:g} at the user's request: each noise value below is "
       "{:g} times the record's, which its comment gives.",
-      inflate,
       inflate,
       inflate);
 }

@@ -169,11 +169,9 @@ std::string NoiseKeyLines(const ExportSources& s,
   std::string out;
   if (k.inflate != 1.0) {
     out += fmt::format(
-        "{}# INFLATED x{:g} at the user's request (--inflate {:g}): the four noise "
-        "values "
-        "below are {:g} times the record's, which each line's comment gives.\n",
+        "{}# INFLATED x{:g} at the user's request: the four noise values below are "
+        "{:g} times the record's, which each line's comment gives.\n",
         pad,
-        k.inflate,
         k.inflate,
         k.inflate);
   }

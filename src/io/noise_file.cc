@@ -577,10 +577,7 @@ void KalibrHeader(YAML::Emitter& y,
       "densities)",
       "to cover unmodelled effects; these are the measured values, not inflated."};
   const std::string inflated[] = {
-      fmt::format("INFLATED x{:g} at the user's request (--inflate {:g}): each value "
-                  "below is",
-                  inflate,
-                  inflate),
+      fmt::format("INFLATED x{:g} at the user's request: each value below is", inflate),
       fmt::format("{:g} times the record's, which its comment gives.", inflate)};
   for (const auto* lines : {kDensities, kRule}) {
     for (int i = 0; i < 2; ++i) y << YamlComment(lines[i]) << YAML::Newline;

@@ -11,8 +11,8 @@
 namespace mpcal {
 namespace {
 
-// The Allan variance of a process from its one-sided power spectral density
-// S(f) (IEEE Std 952-1997 Annex C):
+// The Allan variance of a process from its two-sided power spectral density
+// S(f) (IEEE Std 952-1997 Annex C; white noise of S = N² gives N²/τ):
 //   σ²(τ) = 4 ∫₀^∞ S(f) sin⁴(πfτ) / (πfτ)² df,
 // integrated by the trapezoid rule in ln f over twelve decades around 1/τ.
 template <typename Psd>
@@ -32,12 +32,12 @@ double AvarFromPsd(const Psd& psd, double tau_s) {
 }
 
 TEST(GaussMarkovAvar, MatchesItsSpectrum) {
-  // x' = −x/τc + w of stationary variance σ²: one-sided PSD
-  // 4σ²τc / (1 + (2πfτc)²).
+  // x' = −x/τc + w of stationary variance σ²: two-sided PSD
+  // 2σ²τc / (1 + (2πfτc)²) (its integral over all f is σ²).
   const double sigma2 = 2.5e-5, tau_c = 0.3;
   const auto psd = [&](double f) {
     const double w = 2.0 * std::numbers::pi * f * tau_c;
-    return 4.0 * sigma2 * tau_c / (1.0 + w * w);
+    return 2.0 * sigma2 * tau_c / (1.0 + w * w);
   };
   for (const double tau : {1e-4, 0.01, 0.1, 0.3, 0.57, 1.0, 3.0, 30.0, 1000.0}) {
     EXPECT_NEAR(GaussMarkovAvar(sigma2, tau_c, tau) / AvarFromPsd(psd, tau), 1.0, 1e-4)
