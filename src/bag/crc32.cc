@@ -18,7 +18,8 @@
 namespace mpcal::bag::mcap {
 
 std::uint32_t Crc32(std::string_view data) {
-  return crc32_gzip_refl(0, reinterpret_cast<const unsigned char*>(data.data()), data.size());
+  return crc32_gzip_refl(
+      0, reinterpret_cast<const unsigned char*>(data.data()), data.size());
 }
 
 }  // namespace mpcal::bag::mcap
