@@ -89,32 +89,6 @@ py::dict ReadLogDefaults() {
   return d;
 }
 
-// What may make a two-stream recording wrong (MergeGyroLog's findings), in
-// words.
-std::string DescribeStreams(StreamFinding finding,
-                            const StreamMerge& m,
-                            const std::string& accel,
-                            const std::string& gyro) {
-  if (finding == StreamFinding::kSpansDiffer) {
-    return fmt::format(
-        "{} spans {:.3f} to {:.3f} s but {} spans {:.3f} to {:.3f} s: one stream is "
-        "much shorter, or their clocks disagree; only the overlap is calibrated",
-        accel,
-        m.accel_first_s,
-        m.accel_last_s,
-        gyro,
-        m.gyro_first_s,
-        m.gyro_last_s);
-  }
-  return fmt::format(
-      "{} has a gap of {:.3f} s at {:.3f} s ({:.0f} of its periods): the rates across "
-      "it are interpolated, so a turn made during it is not measured",
-      gyro,
-      m.gyro_gap_s,
-      m.gyro_gap_at_s,
-      m.gyro_gap_s * m.gyro_rate_hz);
-}
-
 // The log at `path`; the gyroscope from a log of its own (gyro_log) or a
 // topic of its own (gyro_topic, in gyro_log or in `path`), put on the
 // accelerometer's rows as `mpcal calibrate --gyro-log/--gyro-topic` does.
@@ -154,7 +128,7 @@ Recording ReadLogFrom(const std::string& path, const py::dict& options) {
     const std::string accel_name = gyro_topic.empty() ? recording.source : log.topic;
     const std::string gyro_name = gyro_topic.empty() ? gyro.source : gyro_topic;
     for (const StreamFinding f : merged.findings) {
-      recording.warnings.push_back(DescribeStreams(f, merged, accel_name, gyro_name));
+      recording.warnings.push_back(Describe(f, merged, accel_name, gyro_name));
     }
     return recording;
   });

@@ -172,37 +172,6 @@ LogOptions WithAccelTopic(LogOptions log, const GyroLogFlags& flags) {
   return log;
 }
 
-namespace {
-
-std::string DescribeFinding(StreamFinding finding,
-                            const StreamMerge& m,
-                            const std::string& accel,
-                            const std::string& gyro) {
-  switch (finding) {
-    case StreamFinding::kSpansDiffer:
-      return fmt::format(
-          "{} spans {:.3f} to {:.3f} s but {} spans {:.3f} to {:.3f} s: one stream is "
-          "much shorter, or their clocks disagree; only the overlap is calibrated",
-          accel,
-          m.accel_first_s,
-          m.accel_last_s,
-          gyro,
-          m.gyro_first_s,
-          m.gyro_last_s);
-    case StreamFinding::kGyroGap:
-      return fmt::format(
-          "{} has a gap of {:.3f} s at {:.3f} s ({:.0f} of its periods): the rates "
-          "across it are interpolated, so a turn made during it is not measured",
-          gyro,
-          m.gyro_gap_s,
-          m.gyro_gap_at_s,
-          m.gyro_gap_s * m.gyro_rate_hz);
-  }
-  return {};
-}
-
-}  // namespace
-
 MergedStreams MergeGyroLogFile(Recording& recording,
                                const std::string& input,
                                const GyroLogFlags& flags,
@@ -228,7 +197,7 @@ MergedStreams MergeGyroLogFile(Recording& recording,
       flags.gyro_topic.empty() ? recording.source : WithAccelTopic(log, flags).topic;
   const std::string gyro_name = flags.gyro_topic.empty() ? gyro.source : flags.gyro_topic;
   for (StreamFinding f : m.findings) {
-    out.warnings.push_back(DescribeFinding(f, m, accel_name, gyro_name));
+    out.warnings.push_back(Describe(f, m, accel_name, gyro_name));
   }
   if (m.resampled) {
     out.summary = fmt::format(

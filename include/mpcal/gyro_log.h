@@ -80,4 +80,11 @@ StreamMerge MergeGyroLog(Recording& recording,
                          const Recording& gyro_log,
                          GyroUnits units);
 
+/// A finding of MergeGyroLog in plain words, the streams named `accel` and
+/// `gyro` (a path or a topic).
+std::string Describe(StreamFinding finding,
+                     const StreamMerge& merge,
+                     const std::string& accel,
+                     const std::string& gyro);
+
 }  // namespace mpcal
