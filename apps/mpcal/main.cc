@@ -5,10 +5,12 @@
 #include <malloc.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <iterator>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -98,6 +100,28 @@ void ReuseFreedMemory() {
 
 int Run(int argc, char** argv);
 
+struct Subcommand {
+  std::string_view name;  // as the subcommand's Add function names it
+  void (*add)(CLI::App& root);
+};
+
+// In the order `mpcal --help` lists them.
+constexpr Subcommand kSubcommands[] = {
+    {"calibrate", mpcal::cli::AddCalibrateCommand},
+    {"detect", mpcal::cli::AddDetectCommand},
+    {"apply", mpcal::cli::AddApplyCommand},
+    {"repeat", mpcal::cli::AddRepeatCommand},
+    {"verify", mpcal::cli::AddVerifyCommand},
+    {"simulate", mpcal::cli::AddSimulateCommand},
+    {"report", mpcal::cli::AddReportCommand},
+    {"demo", mpcal::cli::AddDemoCommand},
+    {"noise", mpcal::cli::AddNoiseCommand},
+    {"inspect", mpcal::cli::AddInspectCommand},
+    {"export", mpcal::cli::AddExportCommand},
+    {"import", mpcal::cli::AddImportCommand},
+    {"record", mpcal::cli::AddRecordCommand},
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -128,36 +152,32 @@ int Run(int argc, char** argv) {
   app.set_version_flag("--version", mpcal::cli::VersionLine());
   app.require_subcommand(1);
   app.footer("Run 'mpcal SUBCOMMAND --help' for the options and an example of each.");
-  mpcal::cli::AddCalibrateCommand(app);
-  mpcal::cli::AddDetectCommand(app);
-  mpcal::cli::AddApplyCommand(app);
-  mpcal::cli::AddRepeatCommand(app);
-  mpcal::cli::AddVerifyCommand(app);
-  mpcal::cli::AddSimulateCommand(app);
-  mpcal::cli::AddReportCommand(app);
-  mpcal::cli::AddDemoCommand(app);
-  mpcal::cli::AddNoiseCommand(app);
-  mpcal::cli::AddInspectCommand(app);
-  mpcal::cli::AddExportCommand(app);
-  mpcal::cli::AddImportCommand(app);
-  mpcal::cli::AddRecordCommand(app);
+  // Only the subcommand named is built: each one's flags, checks and help
+  // text are code that a run of another would page in for nothing (half the
+  // executable's pages touched by `calibrate` were other subcommands' flags).
+  // The root's help, the man pages and the completion take them all.
+  const std::string_view word = argc < 2 ? std::string_view() : std::string_view(argv[1]);
+  const auto named = std::find_if(std::begin(kSubcommands),
+                                  std::end(kSubcommands),
+                                  [&](const Subcommand& s) { return s.name == word; });
+  if (named != std::end(kSubcommands)) {
+    named->add(app);
+  } else {
+    for (const Subcommand& s : kSubcommands) s.add(app);
+  }
 
   // Bare `mpcal`: the help, then the error; an unknown word: say so. (CLI11
   // says "A subcommand is required" to both.)
-  const CLI::App& root = app;
   std::string names;
-  for (const CLI::App* sub : root.get_subcommands([](const CLI::App*) { return true; })) {
-    names += (names.empty() ? "" : ", ") + sub->get_name();
+  for (const Subcommand& s : kSubcommands) {
+    names += (names.empty() ? "" : ", ") + std::string(s.name);
   }
   if (argc < 2) {
     fmt::print("{}", app.help());
     PrintError(fmt::format("no subcommand given: one of {}", names));
     return 2;
   }
-  if (const std::string word = argv[1];
-      !word.empty() && word.front() != '-' &&
-      root.get_subcommands([&](const CLI::App* sub) { return sub->check_name(word); })
-          .empty()) {
+  if (!word.empty() && word.front() != '-' && named == std::end(kSubcommands)) {
     PrintError(fmt::format(
         "'{}' is not an mpcal subcommand; the subcommands are {} (run 'mpcal --help')",
         word,
