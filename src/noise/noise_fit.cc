@@ -50,16 +50,34 @@ double Basis(int term, double tau_s) {
   return 0.0;
 }
 
-// The fitted model: the coefficients of every column and the correlation
-// time and period that make the last two linear.
+// σ²(τ) per unit N² of white noise through the first-order low-pass
+// y_n = φ y_{n−1} + (1 − φ) x_n sampled every τ0 (unit gain at zero
+// frequency): the output is an AR(1) sequence, and the variance of a sum of
+// m of its samples gives, exactly at τ = m τ0,
+//   σ²(τ) = (1/τ) [1 − φ/(1 − φ²) · (4(1 − φ^m) − (1 − φ^{2m})) / m],
+// (1 − φ)²/((1 + φ) τ0) at m = 1, → 1/τ − 3φ τ0/((1 − φ²) τ²) for large m.
+double FilteredWhite(double phi, double tau0_s, double tau_s) {
+  const double m = std::max(1.0, std::round(tau_s / tau0_s));
+  const double pm = std::pow(phi, m);
+  const double r = phi / (1.0 - phi * phi);
+  return (1.0 - r * (4.0 * (1.0 - pm) - (1.0 - pm * pm)) / m) / tau_s;
+}
+
+// The fitted model: the coefficients of every column, the correlation time
+// and period that make the last two linear, and the low-pass filter the
+// white noise went through (φ = 0: none).
 struct Model {
   Coefficients c{};
   double tau_c_s = 1.0;
   double period_s = 1.0;
+  double lowpass_phi = 0.0;
+  double tau0_s = 0.0;
 
   double Column(int col, double tau_s) const {
     if (col == kGaussMarkov) return GaussMarkovAvar(1.0, tau_c_s, tau_s);
     if (col == kSinusoid) return SinusoidAvar(1.0, period_s, tau_s);
+    if (col == static_cast<int>(NoiseTerm::kWhiteNoise) && lowpass_phi > 0.0)
+      return FilteredWhite(lowpass_phi, tau0_s, tau_s);
     return Basis(col, tau_s);
   }
   double Part(int col, double tau_s) const { return c[col] * Column(col, tau_s); }
@@ -69,6 +87,14 @@ struct Model {
     return sum;
   }
 };
+
+// The IEEE terms a model fits: all five, or with the low-pass filter in
+// the white noise's column all but the quantisation, whose 1/τ² at the
+// short end trades against φ and N (a record quantised after its filter is
+// left to the fit with the signed remnant, see AnalyseAxis).
+TermMask IeeeTerms(const Model& m) {
+  return m.lowpass_phi > 0.0 ? kIeeeTerms & ~(1u << kQuantIndex) : kIeeeTerms;
+}
 
 struct Fit {
   Model m;
@@ -502,8 +528,9 @@ Fit SearchShape(std::vector<AllanPoint>& curve,
     } else {
       const double here = std::log(ShapeOf(fit.m, col));
       const double step = std::log(2.0) / (2.0 * o.allan.points_per_octave);
-      lo = here - step;
-      hi = here + step;
+      // Within the grid: the limits on where its peak may lie hold here too.
+      lo = std::max(here - step, std::log(grid.front()));
+      hi = std::min(here + step, std::log(grid.back()));
     }
     // Golden section on [lo, hi].
     constexpr double kGolden = 0.6180339887498949;
@@ -532,6 +559,70 @@ Fit SearchShape(std::vector<AllanPoint>& curve,
   return fit;
 }
 
+// The range of τc (or P) the curve allows about the fitted one: where the
+// weighted cost, the other coefficients refitted, rises by at most the χ²
+// quantile of one parameter (in independent points), searched outward in
+// sixteenths of an octave up to four octaves each way, the crossing then
+// by bisection.
+TauRange ShapeInterval(const std::vector<AllanPoint>& curve,
+                       const Fit& fit,
+                       int col,
+                       TermMask allowed,
+                       TermMask signed_terms,
+                       const NoiseOptions& o) {
+  const double inflation = o.allan.points_per_octave / o.independent_points_per_octave;
+  const std::vector<double> weight = ModelWeights(curve, fit.m);
+  const double at = ShapeOf(fit.m, col);
+  const auto cost_at = [&](double param) {
+    Model m = fit.m;
+    ShapeOf(m, col) = param;
+    return FitNonNegative(curve, weight, m, allowed, signed_terms, 1u << col).cost;
+  };
+  const double limit =
+      cost_at(at) + inflation * ChiSquareQuantile(o.allan.confidence, 1.0);
+  // Outward in sixteenths of an octave to the first step beyond the limit,
+  // then the crossing by bisection in log τ (a sinusoid's period is often
+  // held to a fraction of a step).
+  const auto edge = [&](double direction) {
+    const double step = std::exp2(direction / 16.0);
+    double inside = at;
+    for (int i = 1; i <= 64; ++i) {
+      const double p = inside * step;
+      if (!(cost_at(p) <= limit)) {
+        double a = std::log(inside), b = std::log(p);
+        for (int it = 0; it < 12; ++it) {
+          const double mid = 0.5 * (a + b);
+          (cost_at(std::exp(mid)) <= limit ? a : b) = mid;
+        }
+        return std::exp(a);
+      }
+      inside = p;
+    }
+    return inside;
+  };
+  const TauRange r{edge(-1.0), edge(1.0)};
+  return r;
+}
+
+// The least share of the fitted variance an extra term must carry at the
+// cluster time where it carries most. The criterion alone, on the curve of
+// a half-hour record whose short-τ points have intervals of ±0.4 %, admits
+// sinusoids of 1 % of the variance that follow the record's own scatter
+// there (neighbouring cluster times share their samples); a bump or a
+// sinusoid the check would flag if left out carries a fifth of it or more.
+constexpr double kExtraShare = 0.1;
+// The widest interval of τc (or P), as the ratio of its limits, for the
+// term to count as shown by the curve: two octaves.
+constexpr double kExtraShapeRange = 4.0;
+
+double LargestShare(const std::vector<AllanPoint>& curve, const Model& m, int col) {
+  double largest = 0.0;
+  for (const AllanPoint& p : curve) {
+    largest = std::max(largest, m.Part(col, p.tau_s) / m.Avar(p.tau_s));
+  }
+  return largest;
+}
+
 // The extra terms the curve shows, added to the IEEE fit `base` one at a
 // time while the Bayesian information criterion (Schwarz 1978) falls: each
 // adds two parameters (its coefficient and its τc or P), and is kept when
@@ -557,7 +648,7 @@ Fit AddExtraTerms(std::vector<AllanPoint>& curve,
   const double last_tau_s = curve.back().tau_s;
   Fit best = base;
   double best_stat = Pearson(curve, best.m, phase_points, o.allan.confidence);
-  TermMask in_model = kIeeeTerms;
+  TermMask in_model = IeeeTerms(base.m);
   for (int round = 0; round < 2; ++round) {
     Fit chosen;
     double chosen_stat = std::numeric_limits<double>::infinity();
@@ -574,11 +665,18 @@ Fit AddExtraTerms(std::vector<AllanPoint>& curve,
                                 in_model,
                                 signed_terms,
                                 peak_lo,
-                                last_tau_s / 4.0,
+                                last_tau_s / 16.0,
                                 phase_points,
                                 o);
-      if (!std::isfinite(f.cost) || !(f.m.c[col] > z * std::sqrt(f.variance[col])))
+      if (!std::isfinite(f.cost) || !(f.m.c[col] > z * std::sqrt(f.variance[col])) ||
+          LargestShare(curve, f.m, col) < kExtraShare)
         continue;
+      // Its τc (P) pinned down by the curve: a bump of τc far beyond the
+      // cluster times it rises over is a random walk there, and would take
+      // part of one.
+      const TauRange shape =
+          ShapeInterval(curve, f, col, in_model | (1u << col), signed_terms, o);
+      if (!(shape.hi_s <= kExtraShapeRange * shape.lo_s)) continue;
       const double stat = Pearson(curve, f.m, phase_points, o.allan.confidence);
       if ((best_stat - stat) / inflation > penalty && stat < chosen_stat) {
         chosen = f;
@@ -591,43 +689,39 @@ Fit AddExtraTerms(std::vector<AllanPoint>& curve,
     best_stat = chosen_stat;
     in_model |= 1u << chosen_col;
   }
+  // With both in the model, the first one's τc (or P) was searched without
+  // the second and may straddle both humps: each is searched again over the
+  // whole grid with the other's held, while the statistic falls.
+  if ((in_model & (1u << kGaussMarkov)) && (in_model & (1u << kSinusoid))) {
+    for (int cycle = 0; cycle < 3; ++cycle) {
+      bool improved = false;
+      for (const int col : {kGaussMarkov, kSinusoid}) {
+        const double peak_lo =
+            col == kGaussMarkov ? first_tau_s * std::exp2(1.5) : first_tau_s * 1.1;
+        const Fit f = SearchShape(curve,
+                                  best,
+                                  col,
+                                  in_model & ~(1u << col),
+                                  signed_terms,
+                                  peak_lo,
+                                  last_tau_s / 16.0,
+                                  phase_points,
+                                  o);
+        if (!std::isfinite(f.cost) || !(f.m.c[kGaussMarkov] > 0.0) ||
+            !(f.m.c[kSinusoid] > 0.0))
+          continue;
+        const double stat = Pearson(curve, f.m, phase_points, o.allan.confidence);
+        if (stat < best_stat * (1.0 - 1e-9)) {
+          best = f;
+          best_stat = stat;
+          improved = true;
+        }
+      }
+      if (!improved) break;
+    }
+  }
   SetIntervals(curve, &best.m, phase_points, o.allan.confidence);
   return best;
-}
-
-// The range of τc (or P) the curve allows about the fitted one: where the
-// weighted cost, the other coefficients refitted, rises by at most the χ²
-// quantile of one parameter (in independent points), searched outward in
-// sixteenths of an octave up to four octaves each way.
-TauRange ShapeInterval(const std::vector<AllanPoint>& curve,
-                       const Fit& fit,
-                       int col,
-                       TermMask allowed,
-                       TermMask signed_terms,
-                       const NoiseOptions& o) {
-  const double inflation = o.allan.points_per_octave / o.independent_points_per_octave;
-  const std::vector<double> weight = ModelWeights(curve, fit.m);
-  const double at = ShapeOf(fit.m, col);
-  const auto cost_at = [&](double param) {
-    Model m = fit.m;
-    ShapeOf(m, col) = param;
-    return FitNonNegative(curve, weight, m, allowed, signed_terms, 1u << col).cost;
-  };
-  const double limit =
-      cost_at(at) + inflation * ChiSquareQuantile(o.allan.confidence, 1.0);
-  TauRange r{at, at};
-  const double step = std::exp2(1.0 / 16.0);
-  for (int i = 1; i <= 64; ++i) {
-    const double p = at / std::pow(step, i);
-    if (!(cost_at(p) <= limit)) break;
-    r.lo_s = p;
-  }
-  for (int i = 1; i <= 64; ++i) {
-    const double p = at * std::pow(step, i);
-    if (!(cost_at(p) <= limit)) break;
-    r.hi_s = p;
-  }
-  return r;
 }
 
 // The τ range an extra term was read from: the cluster times about its
@@ -653,7 +747,7 @@ void MeasureExtraTerms(const std::vector<AllanPoint>& curve,
                        TermMask signed_terms,
                        const NoiseOptions& o,
                        AxisNoise& out) {
-  TermMask allowed = kIeeeTerms;
+  TermMask allowed = IeeeTerms(fit.m);
   for (const int col : {kGaussMarkov, kSinusoid}) {
     if (fit.m.c[col] > 0.0) allowed |= 1u << col;
   }
@@ -717,6 +811,51 @@ bool ShortEndRollsOff(const std::vector<AllanPoint>& curve,
     steepest = std::min(steepest, slope);
   }
   return true;
+}
+
+// The low-pass filter's φ that best fits `curve` with the columns of `fit`
+// (the IEEE terms and the extra terms it has), by golden section with the
+// weights of `fit` held, then the coefficients refitted with reweighting at
+// it. Infinite cost when no φ fits. φ ranges over filters whose time
+// constant τ0/ln(1/φ) is at most the curve's first cluster time (the
+// short end cut off holds the roll-off): white noise through a slower
+// filter is a Gauss-Markov process, a bump, not a filter's roll-off.
+Fit SearchLowpass(std::vector<AllanPoint>& curve,
+                  const Fit& fit,
+                  double tau0_s,
+                  double phase_points,
+                  const NoiseOptions& o) {
+  TermMask allowed = kIeeeTerms & ~(1u << kQuantIndex), required = 0;
+  for (const int col : {kGaussMarkov, kSinusoid}) {
+    if (fit.m.c[col] > 0.0) allowed |= 1u << col, required |= 1u << col;
+  }
+  SetIntervals(curve, &fit.m, phase_points, o.allan.confidence);
+  const std::vector<double> weight = ModelWeights(curve, fit.m);
+  Model shape = fit.m;
+  shape.tau0_s = tau0_s;
+  const auto cost_at = [&](double phi) {
+    Model m = shape;
+    m.lowpass_phi = phi;
+    return FitNonNegative(curve, weight, m, allowed, 0, required).cost;
+  };
+  constexpr double kGolden = 0.6180339887498949;
+  double a = 0.0, b = std::exp(-tau0_s / curve.front().tau_s);
+  double x1 = b - kGolden * (b - a), x2 = a + kGolden * (b - a);
+  double f1 = cost_at(x1), f2 = cost_at(x2);
+  for (int it = 0; it < 30; ++it) {
+    if (f1 < f2) {
+      b = x2, x2 = x1, f2 = f1;
+      x1 = b - kGolden * (b - a);
+      f1 = cost_at(x1);
+    } else {
+      a = x1, x1 = x2, f1 = f2;
+      x2 = a + kGolden * (b - a);
+      f2 = cost_at(x2);
+    }
+  }
+  shape.lowpass_phi = f1 < f2 ? x1 : x2;
+  if (!std::isfinite(std::min(f1, f2))) return Fit{};
+  return FitTerms(curve, allowed, phase_points, o, 0, shape, required, &fit.m);
 }
 
 }  // namespace
@@ -790,6 +929,7 @@ AxisNoise AnalyseAxis(std::vector<AllanPoint> curve,
   // their variance into their neighbours (a bias instability under the
   // white noise and random walk would inflate both).
   const double first_tau_s = curve.front().tau_s;
+  const double tau0_s = first_tau_s / static_cast<double>(curve.front().m);
   const auto fit_model = [&](std::vector<AllanPoint>& points, TermMask signed_terms) {
     const Fit base = FitTerms(points, kIeeeTerms, phase_points, o, signed_terms);
     if (!std::isfinite(base.cost)) return base;
@@ -807,7 +947,14 @@ AxisNoise AnalyseAxis(std::vector<AllanPoint> curve,
   // curve's interval (at most half the curve left out).
   std::size_t from = 0;
   TermMask signed_terms = 0;
-  for (std::size_t k = 1; !check.fits && k <= curve.size() / 2 &&
+  // A short end that rolls off (flatter than −½ at the first cluster time)
+  // under a model with an extra term is tried cut too, even where that model
+  // passes the check: the term may stand in for a filter (a bump of τc near
+  // the filter's, whose output is itself a Gauss-Markov process) and take N
+  // with it. The cut is kept when it fits.
+  const bool rolls_off = (fit.m.c[kGaussMarkov] > 0.0 || fit.m.c[kSinusoid] > 0.0) &&
+                         ShortEndRollsOff(curve, 1, o.allan.confidence);
+  for (std::size_t k = 1; (!check.fits || rolls_off) && k <= curve.size() / 2 &&
                           ShortEndRollsOff(curve, k, o.allan.confidence);
        ++k) {
     std::vector<AllanPoint> kept(curve.begin() + static_cast<std::ptrdiff_t>(k),
@@ -817,26 +964,53 @@ AxisNoise AnalyseAxis(std::vector<AllanPoint> curve,
     // output is an AR(1) sequence, whose sums have a closed-form variance):
     // the quantisation's basis with a negative coefficient, allowed here
     // (never reported: a term is measured only where it is positive).
-    const Fit f = fit_model(kept, 1u << kQuantIndex);
-    if (!std::isfinite(f.cost)) continue;
-    const ModelCheck c = CheckModel(kept, f.m, o);
-    // The short end cut off lies below the positive terms carried to it
-    // (the white noise line): a roll-off, not an excess.
-    Model positive = f.m;
-    for (double& c_t : positive.c) c_t = std::max(c_t, 0.0);
-    bool below = true;
-    for (std::size_t j = 0; j < k; ++j) {
-      below = below && curve[j].adev < std::sqrt(positive.Avar(curve[j].tau_s));
-    }
-    // The cut goes on while the first cluster time kept still lies outside:
-    // the roll-off fades as 1/τ, and what is left of it pulls N down.
-    const bool starts_inside =
-        c.disagree.empty() || c.disagree.front().lo_s > kept.front().tau_s;
-    if (!c.fits || !below || !starts_inside) continue;
-    from = k;
-    fit = f;
-    check = c;
-    signed_terms = 1u << kQuantIndex;
+    // That remnant is exact with the filter's own σ²(τ) for the white
+    // noise (FilteredWhite, φ fitted), which ties D to N² and leaves N less
+    // entangled with a bump rising just beyond: tried first; the signed
+    // term serves a roll-off that is not first-order.
+    const TermMask quant = 1u << kQuantIndex;
+    const Fit ieee = FitTerms(kept, kIeeeTerms, phase_points, o, quant);
+    if (!std::isfinite(ieee.cost)) continue;
+    const Fit asymptotic = AddExtraTerms(kept, ieee, quant, first_tau_s, phase_points, o);
+    // φ searched with the IEEE terms, the extra terms added after; when that
+    // misses (a bump rising just beyond the roll-off bends φ), searched with
+    // the extra terms of the asymptotic fit.
+    const auto filter_from = [&](const Fit& seed) {
+      Fit f = SearchLowpass(kept, seed, tau0_s, phase_points, o);
+      if (!std::isfinite(f.cost)) return f;
+      f = AddExtraTerms(kept, f, 0, first_tau_s, phase_points, o);
+      if (f.m.c[kGaussMarkov] > 0.0 || f.m.c[kSinusoid] > 0.0) {
+        const Fit again = SearchLowpass(kept, f, tau0_s, phase_points, o);
+        if (std::isfinite(again.cost)) f = again;
+      }
+      return f;
+    };
+    const auto accept = [&](const Fit& f, TermMask signs) {
+      if (!std::isfinite(f.cost)) return false;
+      const ModelCheck c = CheckModel(kept, f.m, o);
+      // The short end cut off lies below the positive terms carried to it
+      // (the white noise line, unfiltered): a roll-off, not an excess.
+      Model positive = f.m;
+      positive.lowpass_phi = 0.0;
+      for (double& c_t : positive.c) c_t = std::max(c_t, 0.0);
+      bool below = true;
+      for (std::size_t j = 0; j < k; ++j) {
+        below = below && curve[j].adev < std::sqrt(positive.Avar(curve[j].tau_s));
+      }
+      // The cut goes on while the first cluster time kept still lies
+      // outside: what is left of the roll-off there pulls N down.
+      const bool starts_inside =
+          c.disagree.empty() || c.disagree.front().lo_s > kept.front().tau_s;
+      if (!c.fits || !below || !starts_inside) return false;
+      from = k;
+      fit = f;
+      check = c;
+      signed_terms = signs;
+      return true;
+    };
+    if (accept(filter_from(ieee), 0)) break;
+    if (std::isfinite(asymptotic.cost) && accept(filter_from(asymptotic), 0)) break;
+    if (accept(asymptotic, quant)) break;
   }
   if (from > 0) SetIntervals(curve, &fit.m, phase_points, o.allan.confidence);
   check.excluded = static_cast<int>(from);
@@ -877,7 +1051,6 @@ AxisNoise AnalyseAxis(std::vector<AllanPoint> curve,
       sn.status = TermStatus::kDisagrees;
     }
   }
-  const double tau0_s = curve.front().tau_s / static_cast<double>(curve.front().m);
   BoundTerms(kept, fit, (phase_points - 1.0) * tau0_s, o, out);
   out.check = std::move(check);
   out.curve = std::move(curve);
