@@ -632,9 +632,9 @@ double LargestShare(const std::vector<AllanPoint>& curve, const Model& m, int co
 // and its coefficient is above zero by its interval. The bump's peak must
 // lie an octave and a half beyond the curve's first cluster time
 // (`first_tau_s`: a low-pass filter's roll-off, itself a Gauss-Markov
-// process of τc = 1/(2πF), is not a bump) and two octaves before its last
+// process of τc = 1/(2πF), is not a bump) and four octaves before its last
 // (its falling side seen); a sinusoid's anywhere from the second cluster
-// time to two octaves before the last.
+// time to four octaves before the last.
 Fit AddExtraTerms(std::vector<AllanPoint>& curve,
                   const Fit& base,
                   TermMask signed_terms,
