@@ -92,6 +92,89 @@ std::string DatasheetCell(const TermEstimate& e, NoiseTerm t, bool gyro) {
   return fmt::format("{}{:.4g}", e.value ? "" : "< ", d.value);
 }
 
+// The cluster times a term was read from: "0.01–4.5" (s).
+std::string RegionCell(bool measured, double lo_s, double hi_s) {
+  return measured ? fmt::format("{:.2g}–{:.2g}", lo_s, hi_s) : std::string("—");
+}
+
+// The value of a Gauss-Markov process or sinusoid and its interval, or why
+// there is none.
+std::string ExtraCell(const std::optional<double>& v,
+                      double lo,
+                      double hi,
+                      TermStatus status,
+                      bool modelled) {
+  if (v) return fmt::format("{:.4g} [{:.3g}, {:.3g}]", *v, lo, hi);
+  if (!modelled) return "left out of the model";
+  return status == TermStatus::kDisagrees ? "model misses" : "not seen";
+}
+
+// The rows of the Gauss-Markov process and the sinusoid, shown where some
+// axis has one (measured, or where the model misses the curve).
+void PrintExtraTerms(const SensorNoise& s, bool gyro) {
+  const char* u = gyro ? "rad/s" : "m/s²";
+  bool gm = false, sine = false;
+  for (const AxisNoise& a : s.axes) {
+    gm = gm || a.gauss_markov.status != TermStatus::kNotSeen;
+    sine = sine || a.sinusoid.status != TermStatus::kNotSeen;
+  }
+  const auto row = [](const char* label, const char* unit) {
+    fmt::print("{:<22} {:<11}", label, unit);
+  };
+  if (gm) {
+    row("Gauss-Markov σ", u);
+    for (const AxisNoise& a : s.axes) {
+      const GaussMarkovTerm& g = a.gauss_markov;
+      fmt::print(" {:>30}",
+                 ExtraCell(g.sigma, g.sigma_lo, g.sigma_hi, g.status, g.modelled));
+    }
+    fmt::print("\n");
+    row("  correlation time τc", "s");
+    for (const AxisNoise& a : s.axes) {
+      const GaussMarkovTerm& g = a.gauss_markov;
+      fmt::print(
+          " {:>30}",
+          g.sigma ? fmt::format(
+                        "{:.3g} [{:.3g}, {:.3g}]", g.tau_c_s, g.tau_c_lo_s, g.tau_c_hi_s)
+                  : std::string("—"));
+    }
+    fmt::print("\n");
+    row("  read from τ", "s");
+    for (const AxisNoise& a : s.axes) {
+      const GaussMarkovTerm& g = a.gauss_markov;
+      fmt::print(" {:>30}", RegionCell(g.sigma.has_value(), g.tau_lo_s, g.tau_hi_s));
+    }
+    fmt::print("\n");
+  }
+  if (sine) {
+    row("sinusoid amplitude A", u);
+    for (const AxisNoise& a : s.axes) {
+      const SinusoidTerm& n = a.sinusoid;
+      fmt::print(
+          " {:>30}",
+          ExtraCell(n.amplitude, n.amplitude_lo, n.amplitude_hi, n.status, n.modelled));
+    }
+    fmt::print("\n");
+    row("  period P", "s");
+    for (const AxisNoise& a : s.axes) {
+      const SinusoidTerm& n = a.sinusoid;
+      fmt::print(
+          " {:>30}",
+          n.amplitude
+              ? fmt::format(
+                    "{:.4g} [{:.4g}, {:.4g}]", n.period_s, n.period_lo_s, n.period_hi_s)
+              : std::string("—"));
+    }
+    fmt::print("\n");
+    row("  read from τ", "s");
+    for (const AxisNoise& a : s.axes) {
+      const SinusoidTerm& n = a.sinusoid;
+      fmt::print(" {:>30}", RegionCell(n.amplitude.has_value(), n.tau_lo_s, n.tau_hi_s));
+    }
+    fmt::print("\n");
+  }
+}
+
 void PrintSensor(const SensorNoise& s, bool gyro) {
   fmt::print("\n{:<22} {:<11} {:>30} {:>30} {:>30}\n",
              gyro ? "gyroscope" : "accelerometer",
@@ -113,7 +196,15 @@ void PrintSensor(const SensorNoise& s, bool gyro) {
     for (const AxisNoise& a : s.axes)
       fmt::print(" {:>30}", DatasheetCell(a.term(t), t, gyro));
     fmt::print("\n");
+    if (!any) continue;
+    fmt::print("{:<22} {:<11}", "  read from τ", "s");
+    for (const AxisNoise& a : s.axes) {
+      const TermEstimate& e = a.term(t);
+      fmt::print(" {:>30}", RegionCell(e.value.has_value(), e.tau_lo_s, e.tau_hi_s));
+    }
+    fmt::print("\n");
   }
+  PrintExtraTerms(s, gyro);
   fmt::print("{:<22} {:<11}", "model vs curve", "τ points");
   for (const AxisNoise& a : s.axes) fmt::print(" {:>30}", ModelCheckCell(a.check));
   fmt::print("\n");
@@ -186,6 +277,17 @@ void PrintSensorVerdict(const SensorNoise& s, bool gyro, const NoiseResult& r) {
     if (!axes.empty())
       disagree.push_back(
           fmt::format("{} on {}", TermLabel(t, gyro), fmt::join(axes, ", ")));
+  }
+  for (const bool bump : {true, false}) {
+    std::vector<std::string> axes;
+    for (int i = 0; i < 3; ++i) {
+      const AxisNoise& a = s.axes[i];
+      const TermStatus st = bump ? a.gauss_markov.status : a.sinusoid.status;
+      if (st == TermStatus::kDisagrees) axes.emplace_back(1, static_cast<char>('x' + i));
+    }
+    if (!axes.empty())
+      disagree.push_back(fmt::format(
+          "{} on {}", bump ? "Gauss-Markov" : "sinusoid", fmt::join(axes, ", ")));
   }
   for (const NoiseTerm t :
        {NoiseTerm::kWhiteNoise, NoiseTerm::kBiasInstability, NoiseTerm::kRandomWalk}) {
