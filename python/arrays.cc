@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstring>
 #include <optional>
+#include <span>
 #include <vector>
 
 #if defined(__linux__)
@@ -84,21 +85,10 @@ void AdviseHugePages(const void* data, std::size_t bytes) {
 #endif
 }
 
-// `count` doubles of `in` copied to `out` (memory not yet written); false
-// when one is NaN or infinite. Block by block, each checked while it is in
-// the cache the copy brought it to: one pass over the caller's memory.
-bool CopyFinite(const double* in, std::size_t count, double* out) {
-  AdviseHugePages(out, count * sizeof(double));
-  for (std::size_t begin = 0; begin < count; begin += kBlock) {
-    const std::size_t n = std::min(kBlock, count - begin);
-    std::memcpy(out + begin, in + begin, n * sizeof(double));
-    if (!AllFinite(out + begin, n)) return false;
-  }
-  return true;
-}
-
-// The same into an empty vector: reserved, not resized (which would write
-// every value twice, zeros first).
+// `count` doubles of `in` copied into the empty vector `out`; false when one
+// is NaN or infinite. Block by block, each checked while it is in the cache
+// the copy brought it to: one pass over the caller's memory. Reserved, not
+// resized (which would write every value twice, zeros first).
 bool CopyFinite(const double* in, std::size_t count, std::vector<double>& out) {
   out.reserve(count);
   AdviseHugePages(out.data(), count * sizeof(double));
@@ -107,6 +97,31 @@ bool CopyFinite(const double* in, std::size_t count, std::vector<double>& out) {
     out.insert(out.end(), in + begin, in + begin + n);
     if (!AllFinite(out.data() + begin, n)) return false;
   }
+  return true;
+}
+
+// Whether `data` may be seen as doubles in place (numpy's arrays are,
+// unless made from a packed buffer).
+bool AlignedForDoubles(const double* data) {
+  return reinterpret_cast<std::uintptr_t>(data) % alignof(double) == 0;
+}
+
+// The caller's `count` doubles at `data` as the library reads them, in
+// `seen`: in place when aligned as doubles (checked finite in one pass),
+// else copied into `own`. False when one is NaN or infinite.
+bool SeeOrCopy(const double* data,
+               std::size_t count,
+               std::vector<double>& own,
+               std::span<const double>& seen) {
+  if (!AlignedForDoubles(data)) {
+    if (!CopyFinite(data, count, own)) return false;
+    seen = own;
+    return true;
+  }
+  for (std::size_t begin = 0; begin < count; begin += kBlock) {
+    if (!AllFinite(data + begin, std::min(kBlock, count - begin))) return false;
+  }
+  seen = {data, count};
   return true;
 }
 
@@ -162,47 +177,50 @@ Recording ToRecording(const Rows& t,
   return recording;
 }
 
-CheckedRecording ToRecordingChecked(const Rows& t,
-                                    const Rows& accel,
-                                    const py::object& gyro,
-                                    const std::string& units,
-                                    const std::string& gyro_units) {
-  CheckedRecording out;
-  Recording& recording = out.recording;
-  recording.source = "<arrays>";
-  recording.units = AccelUnitsArgument(units, "units");
-  std::optional<Rows> gyro_rows;
+std::shared_ptr<const ArraysView> ViewArrays(const Rows& t,
+                                             const Rows& accel,
+                                             const std::optional<Rows>& gyro_rows,
+                                             const std::string& units,
+                                             const std::string& gyro_units) {
+  auto out = std::make_shared<ArraysView>();
+  RecordingView& rows = out->rows;
+  rows.source = "<arrays>";  // a literal: the view outlives no string of ours
+  rows.units = AccelUnitsArgument(units, "units");
   GyroUnits given = GyroUnits::kRadps;
-  if (!gyro.is_none()) {
+  if (gyro_rows) {
     given = GyroUnitsArgument(gyro_units, "gyro_units");
-    gyro_rows = gyro.cast<Rows>();
+    rows.gyro_log_units = given;
+    rows.gyro_units =
+        given == GyroUnits::kCounts ? GyroUnits::kCounts : GyroUnits::kRadps;
   }
   const auto n = static_cast<std::size_t>(t.shape(0));
-  {
-    const py::gil_scoped_release unlocked;
-    // A Vector3d's default constructor writes nothing: resize leaves the
-    // memory to the copy.
-    recording.accel.resize(n);
-    if (!CopyFinite(t.data(), n, recording.time_s)) {
-      out.not_finite = "t";
-    } else if (n > 0 &&
-               !CopyFinite(accel.data(), 3 * n, recording.accel.front().data())) {
-      out.not_finite = "accel";
-    } else if (gyro_rows) {
-      recording.gyro_radps.resize(n);
-      if (n > 0 &&
-          !CopyFinite(gyro_rows->data(), 3 * n, recording.gyro_radps.front().data())) {
-        out.not_finite = "gyro";
-      }
-    }
+  const double radps = FixedRadpsPerUnit(given).value_or(1.0);
+  const py::gil_scoped_release unlocked;
+  std::span<const double> seen;
+  if (!SeeOrCopy(t.data(), n, out->own_time, seen)) {
+    out->not_finite = "t";
+    return out;
   }
-  if (gyro_rows && out.not_finite.empty()) {
-    recording.gyro_log_units = given;
-    recording.gyro_units =
-        given == GyroUnits::kCounts ? GyroUnits::kCounts : GyroUnits::kRadps;
-    if (const auto radps = FixedRadpsPerUnit(given); radps && *radps != 1.0) {
-      for (Eigen::Vector3d& w : recording.gyro_radps) w *= *radps;
+  rows.time_s = seen;
+  if (!SeeOrCopy(accel.data(), 3 * n, out->own_accel, seen)) {
+    out->not_finite = "accel";
+    return out;
+  }
+  rows.accel = XyzRows(seen.data(), n);
+  if (gyro_rows) {
+    if (radps != 1.0) {
+      // deg/s: converted into rows of its own, as the log reader does.
+      if (!CopyFinite(gyro_rows->data(), 3 * n, out->own_gyro)) {
+        out->not_finite = "gyro";
+        return out;
+      }
+      for (double& w : out->own_gyro) w *= radps;
+      seen = out->own_gyro;
+    } else if (!SeeOrCopy(gyro_rows->data(), 3 * n, out->own_gyro, seen)) {
+      out->not_finite = "gyro";
+      return out;
     }
+    rows.gyro_radps = XyzRows(seen.data(), n);
   }
   return out;
 }

@@ -1,6 +1,8 @@
 // Between numpy arrays and the library's rows (arrays.cc).
 #pragma once
 
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -9,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "mpcal/recording.h"
+#include "mpcal/recording_view.h"
 
 namespace mpcal::python {
 
@@ -25,21 +28,30 @@ py::array ViewOf(const double* values, std::size_t rows, int columns, py::handle
 /// The rows of an N×3 array as the library holds them (one copy).
 std::vector<Eigen::Vector3d> ToVectors(const Rows& rows);
 
-/// The arrays of calibrate, detect and noise, shape and dtype checked by
-/// mpcal/__init__.py but not their values: copied into a Recording with
-/// every value checked finite in the same pass, without the GIL (one read
-/// of the caller's memory, not a check and then a copy).
-struct CheckedRecording {
-  Recording recording;
+/// The arrays of calibrate as the library reads them: views of the
+/// caller's memory (float64, C order, as mpcal/__init__.py hands them
+/// over), every value checked finite in one pass without the GIL; no copy.
+/// A gyroscope in deg/s is converted to rad/s into rows of its own, and
+/// memory not aligned as a double is copied. The view reads the arrays in
+/// place: they must stay alive, and unchanged, while the library reads them
+/// (Interruptible's `in_use`): these very objects, `gyro` already cast (a
+/// cast may convert into an array of its own).
+struct ArraysView {
+  RecordingView rows;
+  /// The rows that had to be converted or copied (empty when viewed).
+  std::vector<double> own_time;
+  std::vector<double> own_accel;
+  std::vector<double> own_gyro;
   /// The argument ("t", "accel", "gyro") holding a value that is NaN or
-  /// infinite; empty when all are finite (then `recording` holds the rows).
+  /// infinite; empty when all are finite (then `rows` is whole).
   std::string not_finite;
 };
-CheckedRecording ToRecordingChecked(const Rows& t,
-                                    const Rows& accel,
-                                    const py::object& gyro,
-                                    const std::string& units,
-                                    const std::string& gyro_units);
+/// Held by a shared pointer: `rows` may point into the object's own vectors.
+std::shared_ptr<const ArraysView> ViewArrays(const Rows& t,
+                                             const Rows& accel,
+                                             const std::optional<Rows>& gyro,
+                                             const std::string& units,
+                                             const std::string& gyro_units);
 
 /// A Recording from arrays (t: N seconds; accel: N×3 in `units`; gyro: N×3
 /// or None, in `gyro_units`: deg/s converted to rad/s as the log reader

@@ -215,20 +215,24 @@ CalibrateOptions CalibrateOptionsFrom(const py::dict& o, const py::object& gravi
   return c;
 }
 
-// (calibration, findings).
-py::tuple CalibrateShared(std::shared_ptr<const Recording> recording,
-                          const py::object& gravity,
-                          const py::dict& options,
-                          const std::string& provenance) {
+// (calibration, findings) of `rows`, which `owner` keeps alive (a Recording,
+// or the rows converted from the caller's arrays) together with `in_use`
+// (the caller's arrays the rows view in place).
+py::tuple CalibrateRows(const RecordingView& rows,
+                        std::shared_ptr<const void> owner,
+                        py::object in_use,
+                        const py::object& gravity,
+                        const py::dict& options,
+                        const std::string& provenance) {
   const CalibrateOptions c = CalibrateOptionsFrom(options, gravity);
-  if (c.counts_per_g > 0.0 && recording->units != AccelUnits::kCounts) {
+  if (c.counts_per_g > 0.0 && rows.units != AccelUnits::kCounts) {
     throw Error(ErrorKind::kOption,
                 "counts_per_g is the scale of raw counts: it goes with units='counts'",
                 Suggest(Option::kLogUnits, "counts"));
   }
-  CalibrateResult result = Interruptible([recording = std::move(recording), c] {
-    return CalibrateRecording(*recording, c);
-  });
+  CalibrateResult result = Interruptible(
+      [rows, owner = std::move(owner), c] { return CalibrateRecording(rows, c); },
+      std::move(in_use));
   if (!result.solve.converged()) {
     throw Error(ErrorKind::kSession,
                 fmt::format("the fit did not converge ({}); check the positions with "
@@ -241,10 +245,10 @@ py::tuple CalibrateShared(std::shared_ptr<const Recording> recording,
   return py::make_tuple(py::cast(std::move(result.calibration)), findings);
 }
 
-// Arrays of the caller's, copied into the rows the library takes and
-// checked finite in the same pass. Returns the Calibration, or the name of
-// the argument holding a NaN or an infinity (mpcal/__init__.py words the
-// error, with the row).
+// Arrays of the caller's, read where they are (float64 in C order, as
+// mpcal/__init__.py hands them over) and checked finite in one pass.
+// Returns the Calibration, or the name of the argument holding a NaN or an
+// infinity (mpcal/__init__.py words the error, with the row).
 py::object Calibrate(const Rows& t,
                      const Rows& accel,
                      const py::object& gyro,
@@ -253,13 +257,17 @@ py::object Calibrate(const Rows& t,
                      const py::object& gravity,
                      const py::dict& options,
                      const std::string& provenance) {
-  CalibrateOptionsFrom(options, gravity);  // bad options before the copy
-  CheckedRecording checked = ToRecordingChecked(t, accel, gyro, units, gyro_units);
-  if (!checked.not_finite.empty()) return py::str(checked.not_finite);
-  return CalibrateShared(std::make_shared<const Recording>(std::move(checked.recording)),
-                         gravity,
-                         options,
-                         provenance);
+  CalibrateOptionsFrom(options, gravity);  // bad options before the rows
+  std::optional<Rows> gyro_rows;
+  if (!gyro.is_none()) gyro_rows = gyro.cast<Rows>();
+  std::shared_ptr<const ArraysView> arrays =
+      ViewArrays(t, accel, gyro_rows, units, gyro_units);
+  if (!arrays->not_finite.empty()) return py::str(arrays->not_finite);
+  const RecordingView rows = arrays->rows;
+  py::object in_use =
+      gyro_rows ? py::make_tuple(t, accel, *gyro_rows) : py::make_tuple(t, accel);
+  return CalibrateRows(
+      rows, std::move(arrays), std::move(in_use), gravity, options, provenance);
 }
 
 // accel (N×3, the calibration's input units) corrected into `out` (N×3 m/s²);
@@ -384,7 +392,9 @@ PYBIND11_MODULE(_mpcal, m) {
            const py::object& gravity,
            const py::dict& options,
            const std::string& provenance) {
-          return CalibrateShared(std::move(recording), gravity, options, provenance);
+          const RecordingView rows = *recording;
+          return CalibrateRows(
+              rows, std::move(recording), py::none(), gravity, options, provenance);
         });
   m.def("_calibrate_defaults", &CalibrateDefaults);
   m.def("_load_calibration", [](const std::string& path) {

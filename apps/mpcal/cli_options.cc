@@ -184,6 +184,8 @@ MergedStreams MergeGyroLogFile(Recording& recording,
   options.gyro_in_dps = log.gyro_in_dps;
   options.gyro_in_counts = log.gyro_in_counts;
   options.topic = flags.gyro_topic;
+  // A bag's two streams on one clock: the one --time chose.
+  options.recording_time = log.recording_time;
   const std::string path = flags.path.empty() ? input : flags.path;
   const Recording gyro = ReadGyroLog(path, options);
   // The gyroscope's own stream replaces whatever rates the accelerometer's

@@ -16,6 +16,7 @@
 #include "mpcal/error.h"
 #include "mpcal/gyro.h"
 #include "mpcal/recording.h"
+#include "mpcal/recording_view.h"
 #include "mpcal/solve.h"
 #include "mpcal/systematic_sample.h"
 
@@ -136,9 +137,9 @@ struct UnitsEvidence {
   SystematicSample magnitudes;
   double largest_gyro = 0.0;  ///< max |ω| over axes and rows, the log's unit
 
-  static UnitsEvidence Of(const Recording& recording);
+  static UnitsEvidence Of(const RecordingView& recording);
   /// Rows [begin, end) of `part` (the first call sets source and units).
-  void Add(const Recording& part, std::size_t begin, std::size_t end);
+  void Add(const RecordingView& part, std::size_t begin, std::size_t end);
 };
 
 /// Catches a log in one unit read as another from the magnitude of its
@@ -154,7 +155,7 @@ struct UnitsEvidence {
 ///   gyroscopes): deg/s, or raw counts, read as rad/s.
 void CheckUnits(const UnitsEvidence& evidence, double gravity_mps2);
 /// CheckUnits on the evidence of a whole recording.
-void CheckUnits(const Recording& recording, double gravity_mps2);
+void CheckUnits(const RecordingView& recording, double gravity_mps2);
 
 /// The turns between neighbouring positions (in time order, as DetectStatic
 /// found them, grown to the motion by ExtendToMotion), integrated from the
@@ -167,7 +168,7 @@ void CheckUnits(const Recording& recording, double gravity_mps2);
 /// Returns `scale_radps_per_unit` too when asked. Empty when the recording
 /// has no gyroscope or fewer than two positions.
 /// \throws mpcal::Error (kInput) when an interval lies outside the recording.
-std::vector<Turn> MeasureTurns(const Recording& recording,
+std::vector<Turn> MeasureTurns(const RecordingView& recording,
                                std::span<const StaticInterval> intervals,
                                double* scale_radps_per_unit = nullptr);
 
@@ -175,7 +176,7 @@ std::vector<Turn> MeasureTurns(const Recording& recording,
 ///   few for the model (with the coverage: how many, what to record), or raw
 ///   counts whose positions do not give their scale; mpcal::UnitsError as
 ///   CheckUnits; mpcal::Error for invalid options.
-CalibrateResult CalibrateRecording(const Recording& recording,
+CalibrateResult CalibrateRecording(const RecordingView& recording,
                                    const CalibrateOptions& options);
 
 }  // namespace mpcal

@@ -38,6 +38,7 @@
 
 #include "mpcal/advice.h"
 #include "mpcal/recording.h"
+#include "mpcal/recording_view.h"
 
 namespace mpcal {
 
@@ -227,7 +228,7 @@ struct Turn {
 /// \throws mpcal::Error if the recording is empty or too short for one
 ///   window, its time does not increase, a reading is not finite, or the
 ///   options are invalid.
-DetectResult DetectStatic(const Recording& recording, const DetectOptions& options);
+DetectResult DetectStatic(const RecordingView& recording, const DetectOptions& options);
 
 /// Why a record is not still throughout (StillVerdict::reason).
 enum class NotStillReason {
@@ -321,7 +322,7 @@ class StillnessMonitor {
 /// and `end_s` change: the means and scatters stay the detected ones. A
 /// position never reaches past its neighbour's edge, and never shrinks.
 /// Returns the intervals as given when the recording has no gyroscope.
-std::vector<StaticInterval> ExtendToMotion(const Recording& recording,
+std::vector<StaticInterval> ExtendToMotion(const RecordingView& recording,
                                            std::span<const StaticInterval> intervals);
 /// ExtendToMotion's window (s): short beside a turn, long enough that a
 /// slow start shows above the noise.

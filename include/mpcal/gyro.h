@@ -47,6 +47,7 @@
 #include "mpcal/detect.h"
 #include "mpcal/gyro_calibration.h"
 #include "mpcal/recording.h"
+#include "mpcal/recording_view.h"
 
 namespace mpcal {
 
@@ -194,7 +195,7 @@ struct GyroResult {
 /// findings (no exception: the accelerometer's calibration stands alone).
 /// \throws mpcal::Error when the recording has no gyroscope readings, an
 ///   interval lies outside it, or the options are invalid.
-GyroResult CalibrateGyroscope(const Recording& recording,
+GyroResult CalibrateGyroscope(const RecordingView& recording,
                               std::span<const StaticInterval> intervals,
                               const Calibration& accel,
                               const GyroOptions& options);
@@ -205,7 +206,7 @@ GyroResult CalibrateGyroscope(const Recording& recording,
 /// does), with the same per-turn weights.
 /// \throws mpcal::Error as CalibrateGyroscope, or when the turns do not
 ///   determine M.
-Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const Recording& recording,
+Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const RecordingView& recording,
                                                std::span<const StaticInterval> intervals,
                                                const Calibration& accel,
                                                const GyroCalibration& truth);
@@ -216,7 +217,7 @@ Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const Recording& recording,
 /// turn the tilt residual before (nominal scale, M = I) and after (M), its
 /// 1σ, and the calibrated rotation's angle and axis. No solve.
 /// \throws mpcal::Error as CalibrateGyroscope.
-std::vector<GyroTurn> ScoreGyroTurns(const Recording& recording,
+std::vector<GyroTurn> ScoreGyroTurns(const RecordingView& recording,
                                      std::span<const StaticInterval> intervals,
                                      const Calibration& accel,
                                      const GyroCalibration& gyro);
@@ -227,7 +228,7 @@ std::vector<GyroTurn> ScoreGyroTurns(const Recording& recording,
 /// frame at `begin` (so a fixed direction u seen at begin is Rᵀ u at end).
 /// \throws mpcal::Error when the range is outside the recording or the
 ///   recording has no gyroscope.
-Eigen::Matrix3d IntegrateRotation(const Recording& recording,
+Eigen::Matrix3d IntegrateRotation(const RecordingView& recording,
                                   std::size_t begin,
                                   std::size_t end,
                                   const GyroCalibration& gyro);

@@ -222,9 +222,11 @@ def calibrate(t, accel, gyro=None, units="mps2", gravity=None, gyro_units="rads"
     fitted sphere), ``gyro_window_s`` (1.0 s), ``gyro_g_sensitivity``
     ("auto", "on", "off"), ``calibrate_gyroscope`` (True).
 
-    The arrays :func:`read_log` and :func:`simulate_static` return are the
-    library's own rows, taken as they are; other arrays are checked and
-    copied (float64, C order) into the rows the library takes.
+    Arrays of float64 in C order (what numpy makes by default) are read
+    where they are, without a copy, each value checked finite; others are
+    converted first (as ``numpy.ascontiguousarray(a, dtype=float64)``), and
+    a gyroscope in "dps" is converted to rad/s. The call reads them while
+    it runs, without the GIL: change them from no other thread meanwhile.
 
     Returns a :class:`Calibration` whose attributes mirror the calibration
     file ``mpcal calibrate -o`` writes, and ``findings``: each warning as a
@@ -245,8 +247,8 @@ def calibrate(t, accel, gyro=None, units="mps2", gravity=None, gyro_units="rads"
         result = Calibration(*native)
         _warn(result.findings)
         return result
-    # The values are checked finite by the library as it copies them (one
-    # pass over the caller's memory); it names the argument that is not.
+    # The library reads the arrays in place and checks them finite (one pass
+    # over the caller's memory); it names the argument that is not.
     arrays = {"t": _shaped("t", t, 1), "accel": _shaped("accel", accel, 3),
               "gyro": None if gyro is None else _shaped("gyro", gyro, 3)}
     _same_length(**arrays)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <utility>
 
 #include <fmt/format.h>
@@ -30,11 +31,12 @@ constexpr double kPlausibleQuietG = 0.03;
 
 // Throws unless the options are valid and the recording has one reading per
 // time stamp and at least one sample. Returns the recording's name.
-std::string CheckCall(const Recording& recording, const DetectOptions& options) {
+std::string CheckCall(const RecordingView& recording, const DetectOptions& options) {
   if (const std::string bad = options.Validate(); !bad.empty()) {
     throw Error(ErrorKind::kOption, "static detection options: " + bad);
   }
-  std::string src = recording.source.empty() ? "recording" : recording.source;
+  std::string src =
+      recording.source.empty() ? "recording" : std::string(recording.source);
   const std::size_t n = recording.size();
   if (n == 0) {
     throw Error(ErrorKind::kInput,
@@ -54,7 +56,7 @@ std::string CheckCall(const Recording& recording, const DetectOptions& options) 
 // sample, and 3 samples at least so that a second difference fits in it.
 // Throws when the window asked for is shorter than two samples (it would
 // silently be three) or the recording shorter than one window.
-std::size_t HalfWindow(const Recording& recording,
+std::size_t HalfWindow(const RecordingView& recording,
                        const DetectOptions& options,
                        const std::string& src,
                        DetectResult* result) {
@@ -143,7 +145,7 @@ void RequantileUnclipped(const std::vector<double>& stat,
 
 // The offset of the readings (raw counts sit near 32768) that orientations
 // are measured about: the centre of a sphere fitted to the longer pieces.
-Eigen::Vector3d OrientationCentre(const std::vector<double>& t,
+Eigen::Vector3d OrientationCentre(std::span<const double> t,
                                   const std::vector<Piece>& pieces,
                                   const DetectOptions& options,
                                   AccelUnits units) {
@@ -159,7 +161,7 @@ Eigen::Vector3d OrientationCentre(const std::vector<double>& t,
 // The intervals of the groups that are long enough and hold no clipped
 // sample; the others are counted (and a clipped one noted).
 void KeepIntervals(const std::vector<std::vector<Piece>>& groups,
-                   const Recording& recording,
+                   const RecordingView& recording,
                    const DetectOptions& options,
                    const std::vector<std::size_t>& clipped_before,
                    const std::string& clip_limits,
@@ -224,7 +226,7 @@ std::string DetectOptions::Validate() const {
   return "";
 }
 
-DetectResult DetectStatic(const Recording& recording, const DetectOptions& options) {
+DetectResult DetectStatic(const RecordingView& recording, const DetectOptions& options) {
   const std::string src = CheckCall(recording, options);
   const auto& t = recording.time_s;
   const auto& a = recording.accel;

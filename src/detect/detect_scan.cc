@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <utility>
 
 #include <fmt/format.h>
@@ -17,7 +18,7 @@
 
 namespace mpcal::internal {
 
-double TypicalPeriod(const std::vector<double>& t) {
+double TypicalPeriod(std::span<const double> t) {
   const std::size_t n = t.size();
   const std::size_t stride = std::max<std::size_t>(1, (n - 1) / 100000);
   std::vector<double> dt;
@@ -57,7 +58,7 @@ std::size_t HalfWindowFor(double window_s, double period_s, const std::string& s
   return std::max<std::size_t>(half, 1);
 }
 
-SampleScan CheckAndScan(const Recording& recording, const std::string& src) {
+SampleScan CheckAndScan(const RecordingView& recording, const std::string& src) {
   const auto& t = recording.time_s;
   const auto& a = recording.accel;
   const std::size_t n = t.size();
@@ -123,9 +124,7 @@ SampleScan CheckAndScan(const Recording& recording, const std::string& src) {
   return scan;
 }
 
-Eigen::Vector3d MeanOf(const std::vector<Eigen::Vector3d>& a,
-                       std::size_t b,
-                       std::size_t e) {
+Eigen::Vector3d MeanOf(std::span<const Eigen::Vector3d> a, std::size_t b, std::size_t e) {
   // A copy, not a reference: read for every sample.
   // NOLINTNEXTLINE(performance-unnecessary-copy-initialization)
   const Eigen::Vector3d ref = a[b];
@@ -134,7 +133,7 @@ Eigen::Vector3d MeanOf(const std::vector<Eigen::Vector3d>& a,
   return ref + s / static_cast<double>(e - b);
 }
 
-SphereFit GravityInUnits(const Recording& r,
+SphereFit GravityInUnits(const RecordingView& r,
                          const std::vector<double>& stat,
                          std::size_t w,
                          double still_level) {
@@ -171,7 +170,7 @@ struct AxisLimits {
 };
 
 // Whether axis k of the readings sticks at `level`: 3 identical samples.
-bool SticksAt(const std::vector<Eigen::Vector3d>& a, int k, double level) {
+bool SticksAt(std::span<const Eigen::Vector3d> a, int k, double level) {
   std::size_t run = 0;
   for (const auto& v : a) {
     run = v[k] == level ? run + 1 : 0;
@@ -180,7 +179,7 @@ bool SticksAt(const std::vector<Eigen::Vector3d>& a, int k, double level) {
   return false;
 }
 
-AxisLimits LimitsOf(const std::vector<Eigen::Vector3d>& a,
+AxisLimits LimitsOf(std::span<const Eigen::Vector3d> a,
                     int k,
                     double range_mps2,
                     const SphereFit& sphere,
@@ -223,7 +222,7 @@ std::string LimitFormula(int k, const AxisLimits& limits, double c, bool from_ra
 
 }  // namespace
 
-Clipping MarkClipped(const std::vector<Eigen::Vector3d>& a,
+Clipping MarkClipped(std::span<const Eigen::Vector3d> a,
                      double range_mps2,
                      const SphereFit& sphere,
                      const SampleScan& scan) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
 
 #include <fmt/format.h>
 
@@ -17,7 +18,7 @@ double AngleDeg(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
   return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi;
 }
 
-std::size_t LowerIndex(const std::vector<double>& t,
+std::size_t LowerIndex(std::span<const double> t,
                        std::size_t b,
                        std::size_t e,
                        double value) {
@@ -27,7 +28,7 @@ std::size_t LowerIndex(const std::vector<double>& t,
   return static_cast<std::size_t>(it - t.begin());
 }
 
-std::size_t UpperIndex(const std::vector<double>& t,
+std::size_t UpperIndex(std::span<const double> t,
                        std::size_t b,
                        std::size_t e,
                        double value) {
@@ -39,7 +40,7 @@ std::size_t UpperIndex(const std::vector<double>& t,
 
 // The time between two pieces that had samples: a stretch with none (the
 // logger dropped data; a gap longer than a window ends a run) is not motion.
-double GapWithSamples(const std::vector<double>& t,
+double GapWithSamples(std::span<const double> t,
                       const Piece& before,
                       const Piece& after,
                       double window_s) {
@@ -52,7 +53,7 @@ double GapWithSamples(const std::vector<double>& t,
 
 }  // namespace
 
-StillRuns FindStillRuns(const std::vector<double>& t,
+StillRuns FindStillRuns(std::span<const double> t,
                         const std::vector<double>& stat,
                         std::size_t first,
                         std::size_t last,
@@ -79,8 +80,8 @@ StillRuns FindStillRuns(const std::vector<double>& t,
   return out;
 }
 
-std::vector<Piece> TrimSettling(const std::vector<double>& t,
-                                const std::vector<Eigen::Vector3d>& a,
+std::vector<Piece> TrimSettling(std::span<const double> t,
+                                std::span<const Eigen::Vector3d> a,
                                 const StillRuns& runs,
                                 double settle_s,
                                 double* longest_still_s) {
@@ -95,7 +96,7 @@ std::vector<Piece> TrimSettling(const std::vector<double>& t,
   return pieces;
 }
 
-std::vector<std::vector<Piece>> MergeAcrossBumps(const std::vector<double>& t,
+std::vector<std::vector<Piece>> MergeAcrossBumps(std::span<const double> t,
                                                  const std::vector<Piece>& pieces,
                                                  const Eigen::Vector3d& centre,
                                                  const DetectOptions& options,
@@ -122,8 +123,8 @@ std::vector<std::vector<Piece>> MergeAcrossBumps(const std::vector<double>& t,
 }
 
 StaticInterval IntervalOf(const std::vector<Piece>& group,
-                          const std::vector<double>& t,
-                          const std::vector<Eigen::Vector3d>& a) {
+                          std::span<const double> t,
+                          std::span<const Eigen::Vector3d> a) {
   StaticInterval iv;
   iv.begin = group.front().begin;
   iv.end = group.back().end;

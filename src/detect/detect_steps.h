@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +15,7 @@
 
 #include "mpcal/detect.h"
 #include "mpcal/recording.h"
+#include "mpcal/recording_view.h"
 #include "mpcal/sphere_fit.h"
 
 namespace mpcal::internal {
@@ -22,7 +24,7 @@ namespace mpcal::internal {
 /// the mean of those no longer than 1.5 x their median, so that a few gaps
 /// do not move it, while timestamps rounded to the millisecond (a 160 Hz log
 /// spaced 6, 6, 7, 6 ms) still give the true rate. Needs 2 samples or more.
-double TypicalPeriod(const std::vector<double>& t);
+double TypicalPeriod(std::span<const double> t);
 
 /// Half the moving window in samples for the typical sample period
 /// `period_s` (0: unknown): lround(window_s / period_s / 2), 1 at least, so
@@ -44,19 +46,17 @@ struct SampleScan {
 
 /// Throws mpcal::Error unless every sample is finite and time strictly
 /// increases, and scans the samples on the way. `src` names the recording.
-SampleScan CheckAndScan(const Recording& recording, const std::string& src);
+SampleScan CheckAndScan(const RecordingView& recording, const std::string& src);
 
 /// Mean of a[b, e), centred on a[b] so that counts near 32768 keep their
 /// digits. Needs e > b.
-Eigen::Vector3d MeanOf(const std::vector<Eigen::Vector3d>& a,
-                       std::size_t b,
-                       std::size_t e);
+Eigen::Vector3d MeanOf(std::span<const Eigen::Vector3d> a, std::size_t b, std::size_t e);
 
 /// One g in the recording's units: fixed for g and m/s²; for counts the
 /// radius of a sphere through the means of the still windows of `w` samples
 /// (statistic `stat` at most `still_level`). Also the sphere's centre (0 for
 /// g and m/s²), about which clipping limits are measured.
-SphereFit GravityInUnits(const Recording& r,
+SphereFit GravityInUnits(const RecordingView& r,
                          const std::vector<double>& stat,
                          std::size_t w,
                          double still_level);
@@ -71,7 +71,7 @@ struct Clipping {
 
 /// Marks the samples at the range limit; `sphere` is one g and the zero in
 /// the recording's units, `scan` has the readings' extremes.
-Clipping MarkClipped(const std::vector<Eigen::Vector3d>& a,
+Clipping MarkClipped(std::span<const Eigen::Vector3d> a,
                      double range_mps2,
                      const SphereFit& sphere,
                      const SampleScan& scan);
@@ -83,7 +83,7 @@ struct StillRuns {
   std::vector<std::pair<std::size_t, std::size_t>> runs;
   std::size_t still_count = 0;  ///< still centres
 };
-StillRuns FindStillRuns(const std::vector<double>& t,
+StillRuns FindStillRuns(std::span<const double> t,
                         const std::vector<double>& stat,
                         std::size_t first,
                         std::size_t last,
@@ -100,8 +100,8 @@ struct Piece {
 /// Trims `settle_s` of settling at both ends of each run; a run shorter than
 /// twice that leaves nothing (a flicker below the threshold inside a turn).
 /// `longest_still_s` gets the longest run before trimming.
-std::vector<Piece> TrimSettling(const std::vector<double>& t,
-                                const std::vector<Eigen::Vector3d>& a,
+std::vector<Piece> TrimSettling(std::span<const double> t,
+                                std::span<const Eigen::Vector3d> a,
                                 const StillRuns& runs,
                                 double settle_s,
                                 double* longest_still_s);
@@ -111,7 +111,7 @@ std::vector<Piece> TrimSettling(const std::vector<double>& t,
 /// merge_gap_s once the trimmed settling on both sides, the window's smear
 /// and stretches with no samples at all (dropped data) are taken out, and
 /// the two means are within merge_angle_deg. `merged` counts the merges.
-std::vector<std::vector<Piece>> MergeAcrossBumps(const std::vector<double>& t,
+std::vector<std::vector<Piece>> MergeAcrossBumps(std::span<const double> t,
                                                  const std::vector<Piece>& pieces,
                                                  const Eigen::Vector3d& centre,
                                                  const DetectOptions& options,
@@ -120,8 +120,8 @@ std::vector<std::vector<Piece>> MergeAcrossBumps(const std::vector<double>& t,
 /// The interval of a group of pieces: the span from the first to the last,
 /// mean and std over the pieces' samples only (the bumps left out).
 StaticInterval IntervalOf(const std::vector<Piece>& group,
-                          const std::vector<double>& t,
-                          const std::vector<Eigen::Vector3d>& a);
+                          std::span<const double> t,
+                          std::span<const Eigen::Vector3d> a);
 
 /// Why no interval was found (kFound when some were), with the figures and
 /// the advice: `runs_found` says whether any window was still.

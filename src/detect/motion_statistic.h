@@ -154,17 +154,10 @@ void ForEachWindow(std::span<const Eigen::Vector3d> a,
 // The motion statistic of every window of a whole record, centred on each
 // sample c in [half, n - 1 - half], in order: visit(c, statistic).
 template <typename Visit>
-void ForEachWindow(const std::vector<Eigen::Vector3d>& a,
-                   std::size_t half,
-                   Visit&& visit) {
+void ForEachWindow(std::span<const Eigen::Vector3d> a, std::size_t half, Visit&& visit) {
   if (a.empty()) return;
   WindowSums sums;
-  ForEachWindow(std::span<const Eigen::Vector3d>(a),
-                half,
-                half,
-                a[0],
-                &sums,
-                std::forward<Visit>(visit));
+  ForEachWindow(a, half, half, a[0], &sums, std::forward<Visit>(visit));
 }
 
 }  // namespace mpcal::internal

@@ -32,7 +32,7 @@ struct Rest {
   Eigen::Vector3d accel_std = Eigen::Vector3d::Zero();
 };
 
-Rest RestOf(const Recording& rec, const StaticInterval& in) {
+Rest RestOf(const RecordingView& rec, const StaticInterval& in) {
   Rest r;
   r.accel_mean = in.mean;
   r.accel_std = in.std;
@@ -74,7 +74,10 @@ double Chi2(const Eigen::Vector3d& departure, const Eigen::Vector3d& scatter) {
 
 // Whether samples [first, last) are at rest as `rest` describes it: the χ²
 // of their means' departures over the six axes.
-bool AtRest(const Recording& rec, const Rest& rest, std::size_t first, std::size_t last) {
+bool AtRest(const RecordingView& rec,
+            const Rest& rest,
+            std::size_t first,
+            std::size_t last) {
   Eigen::Vector3d gyro = Eigen::Vector3d::Zero();
   Eigen::Vector3d accel = Eigen::Vector3d::Zero();
   for (std::size_t i = first; i < last; ++i) {
@@ -89,7 +92,7 @@ bool AtRest(const Recording& rec, const Rest& rest, std::size_t first, std::size
 
 }  // namespace
 
-std::vector<StaticInterval> ExtendToMotion(const Recording& rec,
+std::vector<StaticInterval> ExtendToMotion(const RecordingView& rec,
                                            std::span<const StaticInterval> intervals) {
   std::vector<StaticInterval> out(intervals.begin(), intervals.end());
   if (intervals.empty() || rec.gyro_radps.size() != rec.size() || rec.size() < 2)

@@ -19,7 +19,7 @@ double BridgeIntegralVariance(double pin_a_s, double pin_b_s, double s0_s, doubl
 
 double EstimateBiasWalk(const TurnProblem& problem,
                         std::span<const StaticInterval> intervals,
-                        const Recording& recording,
+                        const RecordingView& recording,
                         const Calibration& accel) {
   const std::size_t n = std::min(intervals.size(), problem.bias_raw.size());
   if (n < 3) return 0.0;

@@ -9,6 +9,7 @@
 #include "mpcal/calibration.h"
 #include "mpcal/detect.h"
 #include "mpcal/recording.h"
+#include "mpcal/recording_view.h"
 #include "turn_problem.h"
 
 namespace mpcal::internal {
@@ -29,7 +30,7 @@ double BridgeIntegralVariance(double pin_a_s, double pin_b_s, double s0_s, doubl
 /// white noise explains, or with fewer than three positions.
 double EstimateBiasWalk(const TurnProblem& problem,
                         std::span<const StaticInterval> intervals,
-                        const Recording& recording,
+                        const RecordingView& recording,
                         const Calibration& accel);
 
 /// Adds to every turn's gyroscope variance the walk `walk_raw2_per_s` left

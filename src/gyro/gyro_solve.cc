@@ -218,7 +218,7 @@ Eigen::Matrix<double, 9, 9> PseudoInverse(
   return eig.eigenvectors() * inverse.asDiagonal() * eig.eigenvectors().transpose();
 }
 
-double ResolveScale(const Recording& recording,
+double ResolveScale(const RecordingView& recording,
                     const GyroOptions& options,
                     const TurnProblem& problem) {
   if (options.radps_per_unit > 0.0) return options.radps_per_unit;
@@ -235,7 +235,7 @@ double ResolveScale(const Recording& recording,
   return FitScale(problem, guess, options.max_iterations);
 }
 
-internal::TurnProblem BuildProblem(const Recording& recording,
+internal::TurnProblem BuildProblem(const RecordingView& recording,
                                    std::span<const StaticInterval> intervals,
                                    const Calibration& accel,
                                    const GyroOptions& options,
@@ -251,7 +251,7 @@ internal::TurnProblem BuildProblem(const Recording& recording,
 
 // The nominal scale that carries the directions to the turns' ends: for raw
 // counts found first from a problem without that carrying.
-double CarryScale(const Recording& recording,
+double CarryScale(const RecordingView& recording,
                   std::span<const StaticInterval> intervals,
                   const Calibration& accel,
                   const GyroOptions& options) {
@@ -416,7 +416,7 @@ std::string_view ToString(GyroStatus status) {
   return "unknown";
 }
 
-GyroResult CalibrateGyroscope(const Recording& recording,
+GyroResult CalibrateGyroscope(const RecordingView& recording,
                               std::span<const StaticInterval> intervals,
                               const Calibration& accel,
                               const GyroOptions& options) {
@@ -476,7 +476,7 @@ GyroResult CalibrateGyroscope(const Recording& recording,
   return result;
 }
 
-Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const Recording& recording,
+Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const RecordingView& recording,
                                                std::span<const StaticInterval> intervals,
                                                const Calibration& accel,
                                                const GyroCalibration& truth) {
@@ -502,7 +502,7 @@ Eigen::Matrix<double, 9, 9> GyroCramerRaoBound(const Recording& recording,
   return ldlt.solve(Eigen::MatrixXd::Identity(9, 9));
 }
 
-Eigen::Matrix3d IntegrateRotation(const Recording& recording,
+Eigen::Matrix3d IntegrateRotation(const RecordingView& recording,
                                   std::size_t begin,
                                   std::size_t end,
                                   const GyroCalibration& gyro) {

@@ -10,7 +10,7 @@
 
 namespace mpcal {
 
-std::vector<GyroTurn> ScoreGyroTurns(const Recording& recording,
+std::vector<GyroTurn> ScoreGyroTurns(const RecordingView& recording,
                                      std::span<const StaticInterval> intervals,
                                      const Calibration& accel,
                                      const GyroCalibration& gyro) {

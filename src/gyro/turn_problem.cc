@@ -33,7 +33,7 @@ struct PositionGyro {
   double centre_s = 0.0;
 };
 
-PositionGyro GyroAt(const Recording& rec, const StaticInterval& in) {
+PositionGyro GyroAt(const RecordingView& rec, const StaticInterval& in) {
   PositionGyro p;
   const std::size_t n = in.end - in.begin;
   // Two passes for the scatter: raw counts near 32768 would cancel in a
@@ -68,7 +68,7 @@ double MeanDirectionVariance(const StaticInterval& in,
 // mean follows it, at the price of the gyroscope's noise over the window
 // (turn_weights.h chooses). Adds the variance of each tangent component of
 // the accelerometer's mean to `*variance`.
-EdgeDirections EdgeDirection(const Recording& rec,
+EdgeDirections EdgeDirection(const RecordingView& rec,
                              const StaticInterval& in,
                              const Calibration& accel,
                              double window_s,
@@ -135,7 +135,7 @@ double TurnData::Sigma(double radps_per_unit) const {
 
 namespace {
 
-void CheckIntervals(const Recording& rec, std::span<const StaticInterval> intervals) {
+void CheckIntervals(const RecordingView& rec, std::span<const StaticInterval> intervals) {
   if (rec.gyro_radps.size() != rec.size() || rec.empty()) {
     throw Error(ErrorKind::kColumns,
                 fmt::format("{}: the log has no gyroscope readings", rec.source));
@@ -203,7 +203,7 @@ void FitGSensitivity(std::span<const StaticInterval> intervals,
 // The bias-free increments of turn `t` (its begin/end set), the bias
 // interpolated between the two positions' rest biases `bias_a`, `bias_b`
 // (plus G f sample by sample), and the gyroscope's part of its variance.
-void FillIncrements(const Recording& rec,
+void FillIncrements(const RecordingView& rec,
                     const Calibration& accel,
                     const PositionGyro& a,
                     const PositionGyro& b,
@@ -266,7 +266,7 @@ void FillIncrements(const Recording& rec,
   t->gyro_variance_raw2s2 = arw + bias;
 }
 
-double MedianSamplePeriod(const Recording& rec) {
+double MedianSamplePeriod(const RecordingView& rec) {
   std::vector<double> periods;
   for (std::size_t i = 1; i < rec.size();
        i += std::max<std::size_t>(1, rec.size() / 1000)) {
@@ -277,7 +277,7 @@ double MedianSamplePeriod(const Recording& rec) {
 
 }  // namespace
 
-TurnProblem BuildTurnProblem(const Recording& rec,
+TurnProblem BuildTurnProblem(const RecordingView& rec,
                              std::span<const StaticInterval> intervals,
                              const Calibration& accel,
                              double direction_window_s,

@@ -16,6 +16,7 @@
 #include "mpcal/gyro.h"
 #include "mpcal/gyro_calibration.h"
 #include "mpcal/recording.h"
+#include "mpcal/recording_view.h"
 #include "rotation.h"
 
 namespace mpcal::internal {
@@ -24,7 +25,8 @@ namespace mpcal::internal {
 /// `gyro` of its gyroscope: the calibration's nominal scale for raw counts,
 /// 1 otherwise (a log in deg/s is held in rad/s, whatever units the
 /// calibration was recorded in).
-inline double HeldRadpsPerUnit(const Recording& recording, const GyroCalibration& gyro) {
+inline double HeldRadpsPerUnit(const RecordingView& recording,
+                               const GyroCalibration& gyro) {
   if (recording.gyro_units != GyroUnits::kCounts) return 1.0;
   return gyro.radps_per_unit > 0.0 ? gyro.radps_per_unit : 1.0;
 }
@@ -122,7 +124,7 @@ struct TurnProblem {
 /// `carry_radps_per_unit` > 0: the specific force of each sample of a
 /// direction window is carried by the gyroscope (at this nominal scale) to
 /// the window's edge, so that the hand's sway within it does not count.
-TurnProblem BuildTurnProblem(const Recording& recording,
+TurnProblem BuildTurnProblem(const RecordingView& recording,
                              std::span<const StaticInterval> intervals,
                              const Calibration& accel,
                              double direction_window_s,

@@ -26,7 +26,7 @@ double HalfSquaredAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 
 }  // namespace
 
-double WhiteNoiseStd(const Recording& recording,
+double WhiteNoiseStd(const RecordingView& recording,
                      std::span<const StaticInterval> intervals) {
   std::vector<double> stds;
   for (const StaticInterval& in : intervals) {
@@ -75,7 +75,7 @@ GyroDirections ChooseDirections(double white_std_raw,
   return out;
 }
 
-GyroDirections WeighTurns(const Recording& recording,
+GyroDirections WeighTurns(const RecordingView& recording,
                           std::span<const StaticInterval> intervals,
                           const Calibration& accel,
                           double radps_per_unit,

@@ -11,6 +11,7 @@
 #include "mpcal/detect.h"
 #include "mpcal/gyro.h"
 #include "mpcal/recording.h"
+#include "mpcal/recording_view.h"
 #include "turn_problem.h"
 
 namespace mpcal::internal {
@@ -21,7 +22,7 @@ namespace mpcal::internal {
 /// the integration follows, not noise; the second difference passes white
 /// noise (variance 6σ²) and damps slow motion. Zero with no position of 3
 /// samples.
-double WhiteNoiseStd(const Recording& recording,
+double WhiteNoiseStd(const RecordingView& recording,
                      std::span<const StaticInterval> intervals);
 
 /// Chooses the turns' directions (GyroDirections) and adds the chosen
@@ -41,7 +42,7 @@ GyroDirections ChooseDirections(double white_std_raw,
 /// scatter at rest) with the white noise and the bias's walk, and chooses
 /// its directions (GyroDirections); `radps_per_unit` is the nominal scale
 /// the directions were carried at (0: not carried, the plain means).
-GyroDirections WeighTurns(const Recording& recording,
+GyroDirections WeighTurns(const RecordingView& recording,
                           std::span<const StaticInterval> intervals,
                           const Calibration& accel,
                           double radps_per_unit,

@@ -21,7 +21,7 @@ namespace mpcal {
 namespace {
 
 // The mean gyroscope reading over a position (raw units): its bias at rest.
-Eigen::Vector3d GyroMean(const Recording& r, const StaticInterval& iv) {
+Eigen::Vector3d GyroMean(const RecordingView& r, const StaticInterval& iv) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (std::size_t i = iv.begin; i < iv.end; ++i) sum += r.gyro_radps[i];
   return sum / static_cast<double>(iv.end - iv.begin);
@@ -36,7 +36,7 @@ struct TurnSpan {
   Eigen::Vector3d u_to = Eigen::Vector3d::UnitZ();
 };
 
-Eigen::Matrix3d TurnRotation(const Recording& r, const TurnSpan& span, double scale) {
+Eigen::Matrix3d TurnRotation(const RecordingView& r, const TurnSpan& span, double scale) {
   GyroCalibration nominal;
   nominal.input_units = r.gyro_units;
   nominal.radps_per_unit = scale;
@@ -50,7 +50,9 @@ double AngleBetweenDeg(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
 
 // Sum of the squared tilts (deg²) between each gravity direction carried
 // over its turn at `scale` and the one measured after it.
-double TiltCost(const Recording& r, const std::vector<TurnSpan>& spans, double scale) {
+double TiltCost(const RecordingView& r,
+                const std::vector<TurnSpan>& spans,
+                double scale) {
   double cost = 0.0;
   for (const TurnSpan& span : spans) {
     const Eigen::Matrix3d rot = TurnRotation(r, span, scale);
@@ -63,7 +65,7 @@ double TiltCost(const Recording& r, const std::vector<TurnSpan>& spans, double s
 // The one common scale of raw counts (rad/s per count) that best carries the
 // directions over the turns: a log grid from 1e-7 to 1e-1 (the step, 19 %,
 // keeps a 90 deg turn within 17 deg of its basin), then golden section.
-double CountsScale(const Recording& r, const std::vector<TurnSpan>& spans) {
+double CountsScale(const RecordingView& r, const std::vector<TurnSpan>& spans) {
   constexpr int kGrid = 80;
   constexpr double kLogLo = -7.0;
   constexpr double kLogHi = -1.0;
@@ -95,7 +97,7 @@ double CountsScale(const Recording& r, const std::vector<TurnSpan>& spans) {
 
 }  // namespace
 
-std::vector<Turn> MeasureTurns(const Recording& recording,
+std::vector<Turn> MeasureTurns(const RecordingView& recording,
                                std::span<const StaticInterval> intervals,
                                double* scale_radps_per_unit) {
   std::vector<Turn> turns;
@@ -164,13 +166,13 @@ namespace {
 
 // Throws a SessionError unless the detection found enough positions for
 // the model.
-void RequireEnoughPositions(const Recording& recording,
+void RequireEnoughPositions(const RecordingView& recording,
                             const DetectResult& detection,
                             const CalibrateOptions& options) {
   const auto& intervals = detection.intervals;
   if (intervals.empty()) {
     throw SessionError(SessionProblem::kNoPositions,
-                       recording.source,
+                       std::string(recording.source),
                        detection,
                        {},
                        Describe(detection.finding),
@@ -183,11 +185,11 @@ void RequireEnoughPositions(const Recording& recording,
     CoverageResult assessed = AssessCoverage(detection, coverage);
     const std::string what = fmt::format("{}: {}", recording.source, Summary(assessed));
     throw SessionError(SessionProblem::kTooFewPositions,
-                       recording.source,
+                       std::string(recording.source),
                        detection,
                        std::move(assessed),
                        what,
-                       Advice{{}, Stage::kDetect, recording.source});
+                       Advice{{}, Stage::kDetect, std::string(recording.source)});
   }
 }
 
@@ -195,7 +197,7 @@ void RequireEnoughPositions(const Recording& recording,
 // means lie on, so that the model's scale-factor errors stay small numbers
 // and the six-position initialisation works as for any other unit. Returns
 // the nominal offset (m/s²) and sets result->mps2_per_unit.
-Eigen::Vector3d NominalScale(const Recording& recording,
+Eigen::Vector3d NominalScale(const RecordingView& recording,
                              const CalibrateOptions& options,
                              CalibrateResult* result) {
   const auto& intervals = result->detection.intervals;
@@ -210,7 +212,7 @@ Eigen::Vector3d NominalScale(const Recording& recording,
     if (!sphere.fitted || !(sphere.radius > 0.0)) {
       throw SessionError(
           SessionProblem::kCountsNotSpread,
-          recording.source,
+          std::string(recording.source),
           result->detection,
           {},
           fmt::format("{}: the {} static positions do not spread over the sphere, so the "
@@ -218,7 +220,9 @@ Eigen::Vector3d NominalScale(const Recording& recording,
                       "record positions with each axis up and down",
                       recording.source,
                       intervals.size()),
-          Advice{{{Option::kLogUnits, "counts"}}, Stage::kDetect, recording.source});
+          Advice{{{Option::kLogUnits, "counts"}},
+                 Stage::kDetect,
+                 std::string(recording.source)});
     }
     result->mps2_per_unit = options.counts_per_g > 0.0
                                 ? kStandardGravityMps2 / options.counts_per_g
@@ -230,7 +234,7 @@ Eigen::Vector3d NominalScale(const Recording& recording,
 }
 
 // The calibration file's content from the solve.
-void Package(const Recording& recording,
+void Package(const RecordingView& recording,
              const CalibrateOptions& options,
              CalibrateResult* result_ptr) {
   CalibrateResult& result = *result_ptr;
@@ -282,7 +286,7 @@ void Package(const Recording& recording,
 
 // The gyroscope from the turns between the same positions, with the gravity
 // directions of the accelerometer just calibrated.
-void CalibrateGyroscopeToo(const Recording& recording,
+void CalibrateGyroscopeToo(const RecordingView& recording,
                            const CalibrateOptions& options,
                            CalibrateResult* result_ptr) {
   CalibrateResult& result = *result_ptr;
@@ -304,7 +308,7 @@ void CalibrateGyroscopeToo(const Recording& recording,
 
 }  // namespace
 
-CalibrateResult CalibrateRecording(const Recording& recording,
+CalibrateResult CalibrateRecording(const RecordingView& recording,
                                    const CalibrateOptions& options) {
   if (const std::string problem = options.Validate(); !problem.empty()) {
     throw Error(ErrorKind::kOption, "calibration options: " + problem);

@@ -47,13 +47,13 @@ void CheckGyroUnits(const UnitsEvidence& e) {
 
 }  // namespace
 
-UnitsEvidence UnitsEvidence::Of(const Recording& recording) {
+UnitsEvidence UnitsEvidence::Of(const RecordingView& recording) {
   UnitsEvidence e;
   e.Add(recording, 0, recording.size());
   return e;
 }
 
-void UnitsEvidence::Add(const Recording& part, std::size_t begin, std::size_t end) {
+void UnitsEvidence::Add(const RecordingView& part, std::size_t begin, std::size_t end) {
   if (end <= begin) return;
   if (rows == 0) {
     source = part.source;
@@ -140,7 +140,7 @@ void CheckUnits(const UnitsEvidence& e, double gravity_mps2) {
                    std::move(advice));
 }
 
-void CheckUnits(const Recording& recording, double gravity_mps2) {
+void CheckUnits(const RecordingView& recording, double gravity_mps2) {
   CheckUnits(UnitsEvidence::Of(recording), gravity_mps2);
 }
 

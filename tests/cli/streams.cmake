@@ -51,6 +51,20 @@ foreach(_rates 63/200 250/400)
     WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
   set_tests_properties(cli.calibrate_two_rates_${_name}_as_single_streams PROPERTIES LABELS cli)
 endforeach()
+# Both streams of a bag on the clock --time chooses: the gyroscope's header
+# stamps moved 1000 s on (restamp_bag.py, receive times kept). By header
+# stamps the streams do not overlap; by receive time they are the bag above.
+add_test(NAME cli.calibrate_two_topics_receive_time
+  COMMAND sh -c "set -e; rm -rf two_topics_receive && mkdir two_topics_receive && cd two_topics_receive
+    ${MPCAL_PYTHON} '${CMAKE_CURRENT_SOURCE_DIR}/restamp_bag.py' '${_bag2}' moved.bag /camera/gyro/sample 1000
+    \"$0\" calibrate '${_bag2}' --accel-topic /camera/accel/sample --gyro-topic /camera/gyro/sample -o stamps.json >/dev/null
+    \"$0\" calibrate moved.bag --accel-topic /camera/accel/sample --gyro-topic /camera/gyro/sample --time receive -o receive.json >/dev/null
+    ${MPCAL_PYTHON} '${CMAKE_CURRENT_SOURCE_DIR}/within_sigma.py' stamps.json receive.json 1e-9 1e-9 >/dev/null
+    if \"$0\" calibrate moved.bag --accel-topic /camera/accel/sample --gyro-topic /camera/gyro/sample -o header.json 2>err.txt; then exit 1; fi
+    grep -q 'the two streams do not overlap in time' err.txt && test ! -e header.json"
+    $<TARGET_FILE:mpcal_cli>
+  WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(cli.calibrate_two_topics_receive_time PROPERTIES LABELS cli)
 mpcal_cli_test(calibrate_gyro_topic_of_another_type EXIT 1
   MATCH "^mpcal: error: .*two_rate\\.bag: topic '/chatter' is of type std_msgs/String" ABSENT imu.json
   ARGS calibrate ${_bag2} --accel-topic /camera/accel/sample --gyro-topic /chatter -o imu.json)

@@ -158,6 +158,51 @@ def test_arrays_of_other_dtypes_give_the_same_result(recording, cal):
     np.testing.assert_allclose(other.bias_mps2, cal.bias_mps2, rtol=RTOL)
 
 
+def misaligned(a):
+    """A copy of `a` in memory one byte off the alignment of a double (an
+    array made from a packed buffer)."""
+    raw = bytearray(a.nbytes + 1)
+    out = np.frombuffer(raw, dtype=np.float64, offset=1).reshape(a.shape)
+    out[...] = a
+    assert not out.flags.aligned and out.flags.c_contiguous
+    return out
+
+
+def test_arrays_of_the_callers_give_the_recordings_result(cli_imu):
+    # Arrays of the caller's (copies: read in place, not the Recording's
+    # rows), and the same values one byte off alignment (copied by the
+    # module): both the numbers of the command.
+    rec = mpcal.read_log(XSENS_ACC, units="counts", gyro_log=str(XSENS_GYRO),
+                         gyro_units="counts")
+    for make in (np.array, misaligned):
+        t, accel, gyro = make(rec.t), make(rec.accel), make(rec.gyro)
+        imu = mpcal.calibrate(t, accel, gyro, units="counts", gyro_units="counts",
+                              gravity=XSENS_GRAVITY_MPS2)
+        assert_model_equal(imu, cli_imu)
+        g = imu.gyroscope
+        np.testing.assert_allclose(g.m, np.asarray(cli_imu["gyroscope"]["m"]).reshape(
+            g.m.shape), rtol=RTOL, atol=1e-15)
+        # Read, never written.
+        np.testing.assert_array_equal(accel, rec.accel)
+        np.testing.assert_array_equal(gyro, rec.gyro)
+
+
+def test_a_gyroscope_in_dps_is_converted_not_changed():
+    s = mpcal.simulate_static(seed=3, gyro=True)
+    t, accel, gyro = np.array(s.t), np.array(s.accel), np.array(s.gyro)
+    in_radps = mpcal.calibrate(t, accel, gyro)
+    gyro_dps = np.degrees(gyro)
+    kept = gyro_dps.copy()
+    in_dps = mpcal.calibrate(t, accel, gyro_dps, gyro_units="dps")
+    np.testing.assert_array_equal(gyro_dps, kept)
+    # rad/s to deg/s and back changes the last bit of some readings only.
+    np.testing.assert_allclose(in_dps.gyroscope.m, in_radps.gyroscope.m, rtol=1e-9,
+                               atol=1e-12)
+    np.testing.assert_allclose(in_dps.gyroscope.bias_radps,
+                               in_radps.gyroscope.bias_radps, rtol=1e-9, atol=1e-12)
+    assert in_dps.gyroscope.input.units == "dps"
+
+
 def test_detect_equals_the_commands_json(recording, tmp_path):
     run_mpcal("detect", XSENS_ACC, "--units", "counts", "--gravity", XSENS_GRAVITY_MPS2,
               "--json", "detect.json", cwd=tmp_path)

@@ -1,7 +1,9 @@
 """A simulated session with known errors: the calibration finds them within
 its 1σ; a long call is interrupted by Ctrl-C; the GIL is released."""
+import gc
 import os
 import signal
+import sys
 import threading
 import time
 
@@ -76,6 +78,38 @@ def test_ctrl_c_interrupts_a_long_calibration():
         waits.append(time.monotonic() - started)
         timer.join()
     assert min(waits) < 0.9 * whole_s, (waits, whole_s)
+
+
+def test_arrays_read_in_place_outlive_an_interrupted_call():
+    # Arrays of the caller's are read where they are: a call that Ctrl-C
+    # interrupted goes on reading them on its thread, so the module holds
+    # them until it ends, and lets them go then.
+    long = mpcal.simulate_static(seed=1, rate_hz=1000, dwell_s=60, initial_rest_s=88)
+    t, accel = np.array(long.t), np.array(long.accel)
+    started = time.monotonic()
+    expected = mpcal.calibrate(t, accel).bias_mps2
+    whole_s = time.monotonic() - started
+    refs = sys.getrefcount(accel)
+    timer = threading.Timer(0.2 * whole_s, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        mpcal.calibrate(t, accel)
+    timer.join()
+    # The caller frees the memory (numpy gives arrays this large back to the
+    # system: a read of them after would crash) while the work may still
+    # read it.
+    probe = accel
+    del t, accel
+    gc.collect()
+    scratch = [np.full((len(long.t), 3), np.nan) for _ in range(2)]
+    deadline = time.monotonic() + 60
+    while sys.getrefcount(probe) > refs and time.monotonic() < deadline:
+        time.sleep(0.01)  # the main thread's pending calls let the arrays go
+    assert sys.getrefcount(probe) == refs
+    del scratch
+    # And the module works on after it.
+    np.testing.assert_allclose(mpcal.calibrate(long.t, probe).bias_mps2, expected,
+                               rtol=1e-9)
 
 
 def test_other_threads_run_during_a_calibration():
