@@ -11,16 +11,16 @@
 # its footprint.
 option(MPCAL_STATIC_SOLVER_DEPS
        "Link Ceres's dependencies (glog, SuiteSparse, LAPACK, BLAS) and the libraries of
-       the bag readers and the Kalibr writer (zstd, lz4, bz2, SQLite, yaml-cpp) from
-       static archives"
+       the bag readers, the Kalibr writer and the gravity model (zstd, lz4, bz2, SQLite,
+       yaml-cpp, GeographicLib) from static archives"
        ON)
 
 # The library to link for `name` (e.g. zstd): its static archive when
 # MPCAL_STATIC_SOLVER_DEPS holds and the archive exists, else the shared
-# library; in `out`. Like Ceres's dependencies, the bag readers' and the
-# Kalibr writer's libraries would be loaded and relocated by every mpcal
-# process although most commands never run them (1.1 MB of a calibration's
-# peak memory).
+# library; in `out`. Like Ceres's dependencies, the libraries of the bag
+# readers, the Kalibr writer and the gravity model would be loaded and
+# relocated by every mpcal process although most commands never run them
+# (1.3 MB of a calibration's peak memory).
 function(mpcal_find_library out name)
   set(names ${name})
   if(MPCAL_STATIC_SOLVER_DEPS AND NOT MPCAL_SANITIZE AND NOT MPCAL_FUZZ)
