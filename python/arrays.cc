@@ -162,6 +162,33 @@ Recording ToRecording(const Rows& t,
   return recording;
 }
 
+namespace {
+
+// A gyroscope recorded apart (read_log with gyro_log or gyro_topic) keeps its
+// own samples beside the rows (Recording::gyro_samples), over which the
+// turns are integrated. Rows given back as that Recording's own views, not
+// copied, carry them, so that calibrate gives the command's numbers.
+void KeepGyroSamples(const Rows& t,
+                     const py::object& gyro,
+                     const Rows& gyro_rows,
+                     double radps_per_unit,
+                     Recording* recording) {
+  if (!py::hasattr(gyro, "base")) return;
+  const py::object base = gyro.attr("base");
+  if (!py::isinstance<Recording>(base)) return;
+  const auto& source = base.cast<const Recording&>();
+  if (source.gyro_samples.empty() || source.size() != recording->size() ||
+      source.empty() || t.data() != source.time_s.data() ||
+      gyro_rows.data() != source.gyro_radps.front().data()) {
+    return;
+  }
+  recording->gyro_samples_time_s = source.gyro_samples_time_s;
+  recording->gyro_samples = source.gyro_samples;
+  for (Eigen::Vector3d& w : recording->gyro_samples) w *= radps_per_unit;
+}
+
+}  // namespace
+
 CheckedRecording ToRecordingChecked(const Rows& t,
                                     const Rows& accel,
                                     const py::object& gyro,
@@ -200,9 +227,11 @@ CheckedRecording ToRecordingChecked(const Rows& t,
     recording.gyro_log_units = given;
     recording.gyro_units =
         given == GyroUnits::kCounts ? GyroUnits::kCounts : GyroUnits::kRadps;
-    if (const auto radps = FixedRadpsPerUnit(given); radps && *radps != 1.0) {
+    const auto radps = FixedRadpsPerUnit(given);
+    if (radps && *radps != 1.0) {
       for (Eigen::Vector3d& w : recording.gyro_radps) w *= *radps;
     }
+    KeepGyroSamples(t, gyro, *gyro_rows, radps ? *radps : 1.0, &recording);
   }
   return out;
 }
