@@ -177,9 +177,44 @@ Recording ToRecording(const Rows& t,
   return recording;
 }
 
+namespace {
+
+// A gyroscope recorded apart (read_log with gyro_log or gyro_topic) keeps its
+// own samples beside the rows (Recording::gyro_samples), over which the
+// turns are integrated. Rows given back as that Recording's own arrays, not
+// copies, carry them, so that calibrate gives the command's numbers; the
+// arrays hold the Recording, so the samples live as long as they do.
+void KeepGyroSamples(const Rows& t,
+                     const py::object& gyro,
+                     const Rows& gyro_rows,
+                     double radps_per_unit,
+                     ArraysView* out) {
+  if (!py::hasattr(gyro, "base")) return;
+  const py::object base = gyro.attr("base");
+  if (!py::isinstance<Recording>(base)) return;
+  const auto& source = base.cast<const Recording&>();
+  if (source.gyro_samples.empty() || source.empty() ||
+      source.size() != static_cast<std::size_t>(t.shape(0)) ||
+      t.data() != source.time_s.data() ||
+      gyro_rows.data() != source.gyro_radps.front().data()) {
+    return;
+  }
+  out->rows.gyro_samples_time_s = source.gyro_samples_time_s;
+  if (radps_per_unit == 1.0) {
+    out->rows.gyro_samples = source.gyro_samples;
+    return;
+  }
+  out->own_gyro_samples = source.gyro_samples;
+  for (Eigen::Vector3d& w : out->own_gyro_samples) w *= radps_per_unit;
+  out->rows.gyro_samples = out->own_gyro_samples;
+}
+
+}  // namespace
+
 std::shared_ptr<const ArraysView> ViewArrays(const Rows& t,
                                              const Rows& accel,
                                              const std::optional<Rows>& gyro_rows,
+                                             const py::object& gyro,
                                              const std::string& units,
                                              const std::string& gyro_units) {
   auto out = std::make_shared<ArraysView>();
@@ -195,6 +230,7 @@ std::shared_ptr<const ArraysView> ViewArrays(const Rows& t,
   }
   const auto n = static_cast<std::size_t>(t.shape(0));
   const double radps = FixedRadpsPerUnit(given).value_or(1.0);
+  if (gyro_rows) KeepGyroSamples(t, gyro, *gyro_rows, radps, out.get());
   const py::gil_scoped_release unlocked;
   std::span<const double> seen;
   if (!SeeOrCopy(t.data(), n, out->own_time, seen)) {

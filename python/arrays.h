@@ -35,13 +35,17 @@ std::vector<Eigen::Vector3d> ToVectors(const Rows& rows);
 /// memory not aligned as a double is copied. The view reads the arrays in
 /// place: they must stay alive, and unchanged, while the library reads them
 /// (Interruptible's `in_use`): these very objects, `gyro` already cast (a
-/// cast may convert into an array of its own).
+/// cast may convert into an array of its own). `gyro` as the caller gave
+/// it: when it is a Recording's own array, that Recording's gyroscope
+/// samples recorded apart are seen too.
 struct ArraysView {
   RecordingView rows;
   /// The rows that had to be converted or copied (empty when viewed).
   std::vector<double> own_time;
   std::vector<double> own_accel;
   std::vector<double> own_gyro;
+  /// A Recording's own gyroscope samples, converted (see KeepGyroSamples).
+  std::vector<Eigen::Vector3d> own_gyro_samples;
   /// The argument ("t", "accel", "gyro") holding a value that is NaN or
   /// infinite; empty when all are finite (then `rows` is whole).
   std::string not_finite;
@@ -49,7 +53,8 @@ struct ArraysView {
 /// Held by a shared pointer: `rows` may point into the object's own vectors.
 std::shared_ptr<const ArraysView> ViewArrays(const Rows& t,
                                              const Rows& accel,
-                                             const std::optional<Rows>& gyro,
+                                             const std::optional<Rows>& gyro_rows,
+                                             const py::object& gyro,
                                              const std::string& units,
                                              const std::string& gyro_units);
 

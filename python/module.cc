@@ -261,7 +261,7 @@ py::object Calibrate(const Rows& t,
   std::optional<Rows> gyro_rows;
   if (!gyro.is_none()) gyro_rows = gyro.cast<Rows>();
   std::shared_ptr<const ArraysView> arrays =
-      ViewArrays(t, accel, gyro_rows, units, gyro_units);
+      ViewArrays(t, accel, gyro_rows, gyro, units, gyro_units);
   if (!arrays->not_finite.empty()) return py::str(arrays->not_finite);
   const RecordingView rows = arrays->rows;
   py::object in_use =

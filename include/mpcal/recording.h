@@ -53,6 +53,13 @@ struct Recording {
   /// when `gyro_units` is GyroUnits::kCounts (their scale is found from the
   /// session's turns).
   std::vector<Eigen::Vector3d> gyro_radps;
+  /// A gyroscope recorded apart at its own stamps (MergeGyroLog): its
+  /// samples as read, times in s on this recording's clock, readings in
+  /// `gyro_units`. The turns are integrated over these and the noise at
+  /// rest is measured on them; `gyro_radps` then holds their means over each
+  /// row's interval. Empty when the gyroscope came on the rows.
+  std::vector<double> gyro_samples_time_s;
+  std::vector<Eigen::Vector3d> gyro_samples;
   /// kRadps for readings in rad/s (logs in deg/s are converted on reading),
   /// kCounts for raw counts.
   GyroUnits gyro_units = GyroUnits::kRadps;

@@ -27,6 +27,10 @@ struct RecordingView {
   std::span<const double> time_s;
   std::span<const Eigen::Vector3d> accel;
   std::span<const Eigen::Vector3d> gyro_radps;
+  /// A gyroscope recorded apart: its own samples and their times, as
+  /// Recording's (empty when the gyroscope came on the rows).
+  std::span<const double> gyro_samples_time_s;
+  std::span<const Eigen::Vector3d> gyro_samples;
   GyroUnits gyro_units = GyroUnits::kRadps;
   GyroUnits gyro_log_units = GyroUnits::kRadps;
   AccelUnits units = AccelUnits::kMps2;
@@ -39,6 +43,8 @@ struct RecordingView {
       : time_s(recording.time_s),
         accel(recording.accel),
         gyro_radps(recording.gyro_radps),
+        gyro_samples_time_s(recording.gyro_samples_time_s),
+        gyro_samples(recording.gyro_samples),
         gyro_units(recording.gyro_units),
         gyro_log_units(recording.gyro_log_units),
         units(recording.units),

@@ -35,9 +35,13 @@ double EstimateBiasWalk(const TurnProblem& problem,
   auto length_s = [&](std::size_t k) {
     return recording.time_s[intervals[k].end - 1] - recording.time_s[intervals[k].begin];
   };
+  // The samples in each position's mean: the gyroscope's own when it was
+  // recorded apart.
   auto count = [&](std::size_t k) {
-    return static_cast<double>(
-        std::max<std::size_t>(intervals[k].end - intervals[k].begin, 1));
+    const std::size_t samples = k < problem.bias_samples.size()
+                                    ? problem.bias_samples[k]
+                                    : intervals[k].end - intervals[k].begin;
+    return static_cast<double>(std::max<std::size_t>(samples, 1));
   };
   // Drift per second, the ratio estimator (least squares with weights 1/Δt).
   Eigen::Vector3d change = Eigen::Vector3d::Zero();

@@ -12,6 +12,25 @@
 #include "rotation.h"
 
 namespace mpcal::internal {
+
+GyroSamples SamplesOf(const RecordingView& recording) {
+  if (!recording.gyro_samples.empty() &&
+      recording.gyro_samples.size() == recording.gyro_samples_time_s.size()) {
+    return {recording.gyro_samples_time_s, recording.gyro_samples};
+  }
+  return {recording.time_s, recording.gyro_radps};
+}
+
+std::pair<std::size_t, std::size_t> SamplesWithin(const GyroSamples& samples,
+                                                  double from_s,
+                                                  double to_s) {
+  const auto t = samples.time_s;
+  const auto first = std::lower_bound(t.begin(), t.end(), from_s);
+  const auto last = std::upper_bound(first, t.end(), to_s);
+  return {static_cast<std::size_t>(first - t.begin()),
+          static_cast<std::size_t>(last - t.begin())};
+}
+
 namespace {
 
 Eigen::Matrix3d CrossMatrix(const Eigen::Vector3d& v) {
@@ -33,17 +52,24 @@ struct PositionGyro {
   double centre_s = 0.0;
 };
 
+// The gyroscope's samples within the position's time span: its own stream
+// when it was recorded apart, whose scatter is the sensor's noise.
 PositionGyro GyroAt(const RecordingView& rec, const StaticInterval& in) {
   PositionGyro p;
-  const std::size_t n = in.end - in.begin;
+  GyroSamples s = SamplesOf(rec);
+  auto [first, last] = SamplesWithin(s, rec.time_s[in.begin], rec.time_s[in.end - 1]);
+  if (last < first + 2) {  // a position of under two of its own samples
+    s = {rec.time_s, rec.gyro_radps};
+    first = in.begin, last = in.end;
+  }
+  const std::span<const Eigen::Vector3d> rate = s.rate;
+  const std::size_t n = last - first;
   // Two passes for the scatter: raw counts near 32768 would cancel in a
   // one-pass sum of squares.
-  for (std::size_t i = in.begin; i < in.end; ++i) p.mean += rec.gyro_radps[i];
+  for (std::size_t i = first; i < last; ++i) p.mean += rate[i];
   p.mean /= static_cast<double>(n);
   Eigen::Vector3d sq = Eigen::Vector3d::Zero();
-  for (std::size_t i = in.begin; i < in.end; ++i) {
-    sq += (rec.gyro_radps[i] - p.mean).cwiseAbs2();
-  }
+  for (std::size_t i = first; i < last; ++i) sq += (rate[i] - p.mean).cwiseAbs2();
   p.std = n > 1 ? std::sqrt(sq.sum() / 3.0 / static_cast<double>(n - 1)) : 0.0;
   p.samples = n;
   p.centre_s = 0.5 * (rec.time_s[in.begin] + rec.time_s[in.end - 1]);
@@ -200,6 +226,53 @@ void FitGSensitivity(std::span<const StaticInterval> intervals,
   }
 }
 
+// The points of a turn's integration: the gyroscope's samples from its start
+// to its end, the rate interpolated linearly between two samples at an end
+// that does not fall on one (a gyroscope recorded apart: the turn's ends are
+// the accelerometer's rows), and one sample beyond each end where there is
+// one, for the four-point rule. `row` is the accelerometer's row nearest the
+// point, for the g-sensitivity.
+struct RatePoint {
+  double t_s = 0.0;
+  Eigen::Vector3d rate = Eigen::Vector3d::Zero();
+  std::size_t row = 0;
+  bool sample = true;
+};
+
+std::vector<RatePoint> TurnPoints(const RecordingView& rec, const TurnData& t) {
+  const GyroSamples s = SamplesOf(rec);
+  const std::size_t n = s.time_s.size();
+  const auto [first, last] = SamplesWithin(s, t.start_s, t.end_s);
+  auto row_at = [&](double time) {
+    const auto it = std::lower_bound(rec.time_s.begin(), rec.time_s.end(), time);
+    std::size_t i = static_cast<std::size_t>(it - rec.time_s.begin());
+    if (i == rec.size() || (i > 0 && time - rec.time_s[i - 1] < rec.time_s[i] - time))
+      --i;
+    return i;
+  };
+  auto sample = [&](std::size_t j) {
+    return RatePoint{s.time_s[j], s.rate[j], row_at(s.time_s[j]), true};
+  };
+  auto between = [&](double time) {
+    const auto it = std::upper_bound(s.time_s.begin(), s.time_s.end(), time);
+    const std::size_t k = std::clamp<std::size_t>(
+        static_cast<std::size_t>(it - s.time_s.begin()), 1, n - 1);
+    const double h = s.time_s[k] - s.time_s[k - 1];
+    const double f = h > 0.0 ? std::clamp((time - s.time_s[k - 1]) / h, 0.0, 1.0) : 0.0;
+    return RatePoint{
+        time, (1.0 - f) * s.rate[k - 1] + f * s.rate[k], row_at(time), false};
+  };
+  std::vector<RatePoint> points;
+  const bool starts_on_sample = first < last && s.time_s[first] == t.start_s;
+  const bool ends_on_sample = first < last && s.time_s[last - 1] == t.end_s;
+  if (starts_on_sample && first > 0) points.push_back(sample(first - 1));
+  if (!starts_on_sample) points.push_back(between(t.start_s));
+  for (std::size_t j = first; j < last; ++j) points.push_back(sample(j));
+  if (!ends_on_sample) points.push_back(between(t.end_s));
+  if (ends_on_sample && last < n) points.push_back(sample(last));
+  return points;
+}
+
 // The bias-free increments of turn `t` (its begin/end set), the bias
 // interpolated between the two positions' rest biases `bias_a`, `bias_b`
 // (plus G f sample by sample), and the gyroscope's part of its variance.
@@ -215,44 +288,46 @@ void FillIncrements(const RecordingView& rec,
   const Eigen::Matrix3d& g_sens = problem.g_sensitivity_raw_per_mps2;
   const bool with_g = g_sens.any();
   const Calibration::AffineCorrection correct = accel.Affine();
-  auto bias_at = [&](std::size_t i, double* lambda) {
-    *lambda = std::clamp((rec.time_s[i] - a.centre_s) / span_s, 0.0, 1.0);
-    Eigen::Vector3d bias = (1.0 - *lambda) * bias_a + *lambda * bias_b;
-    if (with_g) bias += g_sens * correct(rec.accel[i]);
-    return bias;
-  };
   // Bias-free rates from one sample before the turn to one after it (when
   // the recording has them), for the four-point rule below.
-  const std::size_t first = t->begin > 0 ? t->begin - 1 : t->begin;
-  const std::size_t last = std::min(t->end + 1, rec.size() - 1);
-  std::vector<Eigen::Vector3d> rates;
-  rates.reserve(last - first + 1);
+  std::vector<RatePoint> points = TurnPoints(rec, *t);
   std::vector<double> lambdas;
-  lambdas.reserve(last - first + 1);
-  for (std::size_t i = first; i <= last; ++i) {
-    double l = 0.0;
-    rates.push_back(rec.gyro_radps[i] - bias_at(i, &l));
+  lambdas.reserve(points.size());
+  for (RatePoint& p : points) {
+    const double l = std::clamp((p.t_s - a.centre_s) / span_s, 0.0, 1.0);
+    Eigen::Vector3d bias = (1.0 - l) * bias_a + l * bias_b;
+    if (with_g) bias += g_sens * correct(rec.accel[p.row]);
+    p.rate -= bias;
     lambdas.push_back(l);
   }
-  auto rate = [&](std::size_t i) { return rates[i - first]; };
-  t->steps.reserve(t->end - t->begin);
+  // The turn runs from the first point at or after its start to the last
+  // at or before its end; the others are the four-point rule's neighbours.
+  std::size_t begin = 0;
+  while (begin < points.size() && points[begin].t_s < t->start_s) ++begin;
+  std::size_t end = points.size();
+  while (end > begin && points[end - 1].t_s > t->end_s) --end;
+  const auto at = [&](std::size_t k) -> const RatePoint& { return points[k]; };
+  t->steps.reserve(end > begin ? end - begin - 1 : 0);
   double lambda_sum = 0.0;
-  for (std::size_t i = t->begin; i < t->end; ++i) {
-    const double dt = rec.time_s[i + 1] - rec.time_s[i];
-    // The angle over the interval by the cubic through the rates at i − 1 …
-    // i + 2, dt (−w₋₁ + 13 w₀ + 13 w₁ − w₂)/24, where the trapezoid's
+  for (std::size_t k = begin; k + 1 < end; ++k) {
+    const double dt = at(k + 1).t_s - at(k).t_s;
+    // The angle over the interval by the cubic through the rates at k − 1 …
+    // k + 2, dt (−w₋₁ + 13 w₀ + 13 w₁ − w₂)/24, where the trapezoid's
     // dt (w₀ + w₁)/2 errs by dt³ ẅ/12 (on the simulator's turns, which shake
     // by 3° at 3-9 Hz, sampled at 100 Hz, it takes a fifth of the variance
     // the integration adds to a turn; the rest is not the rate's quadrature,
     // and is gone at 400 Hz). Both ends move by the same amount, so the
     // coning term keeps its form; in the middle of a turn every sample still
-    // weighs dt, so the white noise is integrated as before.
+    // weighs dt, so the white noise is integrated as before. Four samples
+    // of the gyroscope's own, not an end interpolated between two.
     Eigen::Vector3d shift = Eigen::Vector3d::Zero();
-    if (i > first && i + 1 < last) {
-      shift = (rate(i) + rate(i + 1) - rate(i - 1) - rate(i + 2)) * (dt / 24.0);
+    if (k > 0 && k + 2 < points.size() && at(k - 1).sample && at(k).sample &&
+        at(k + 1).sample && at(k + 2).sample) {
+      shift =
+          (at(k).rate + at(k + 1).rate - at(k - 1).rate - at(k + 2).rate) * (dt / 24.0);
     }
-    t->steps.push_back({rate(i) * dt + shift, rate(i + 1) * dt + shift});
-    lambda_sum += 0.5 * (lambdas[i - first] + lambdas[i + 1 - first]);
+    t->steps.push_back({at(k).rate * dt + shift, at(k + 1).rate * dt + shift});
+    lambda_sum += 0.5 * (lambdas[k] + lambdas[k + 1]);
   }
   const double duration = t->end_s - t->start_s;
   const double lambda = t->steps.empty() ? 0.5 : lambda_sum / t->steps.size();
@@ -266,11 +341,11 @@ void FillIncrements(const RecordingView& rec,
   t->gyro_variance_raw2s2 = arw + bias;
 }
 
-double MedianSamplePeriod(const RecordingView& rec) {
+double MedianSamplePeriod(const GyroSamples& s) {
   std::vector<double> periods;
-  for (std::size_t i = 1; i < rec.size();
-       i += std::max<std::size_t>(1, rec.size() / 1000)) {
-    periods.push_back(rec.time_s[i] - rec.time_s[i - 1]);
+  const std::size_t n = s.time_s.size();
+  for (std::size_t i = 1; i < n; i += std::max<std::size_t>(1, n / 1000)) {
+    periods.push_back(s.time_s[i] - s.time_s[i - 1]);
   }
   return Median(periods);
 }
@@ -291,12 +366,13 @@ TurnProblem BuildTurnProblem(const RecordingView& rec,
   for (const StaticInterval& in : intervals) {
     gyro.push_back(GyroAt(rec, in));
     stds.push_back(gyro.back().std);
+    problem.bias_samples.push_back(gyro.back().samples);
     problem.bias_raw.push_back({gyro.back().centre_s, gyro.back().mean});
   }
   // The typical scatter at rest is the white noise; a position far quieter
   // is quantisation of a sensor that does not move, not a better gyroscope.
   problem.noise_std_raw = Median(stds);
-  problem.sample_period_s = MedianSamplePeriod(rec);
+  problem.sample_period_s = MedianSamplePeriod(SamplesOf(rec));
   std::vector<Eigen::Vector3d> rest_bias;
   rest_bias.reserve(gyro.size());
   for (const PositionGyro& p : gyro) rest_bias.push_back(p.mean);

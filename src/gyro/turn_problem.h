@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -109,6 +110,9 @@ struct TurnProblem {
   /// and the median sample period (s).
   double noise_std_raw = 0.0;
   double sample_period_s = 0.0;
+  /// Gyroscope samples in each position's mean (its own samples when it was
+  /// recorded apart, Recording::gyro_samples).
+  std::vector<std::size_t> bias_samples;
   /// g-sensitivity of the bias (raw units per m/s²); zero when not estimated.
   Eigen::Matrix3d g_sensitivity_raw_per_mps2 = Eigen::Matrix3d::Zero();
   bool g_sensitivity_used = false;
@@ -117,6 +121,20 @@ struct TurnProblem {
   /// Mean over the positions of bias − G f (raw units).
   Eigen::Vector3d bias_without_g_raw = Eigen::Vector3d::Zero();
 };
+
+/// The gyroscope's samples as measured: its own stream when it was recorded
+/// apart (Recording::gyro_samples; the rows then hold means over each row,
+/// which neighbouring rows share, so that their scatter is not the sensor's
+/// noise), else the rows'.
+struct GyroSamples {
+  std::span<const double> time_s;
+  std::span<const Eigen::Vector3d> rate;
+};
+GyroSamples SamplesOf(const RecordingView& recording);
+/// Samples [first, last) whose times lie within [from_s, to_s].
+std::pair<std::size_t, std::size_t> SamplesWithin(const GyroSamples& samples,
+                                                  double from_s,
+                                                  double to_s);
 
 /// \throws mpcal::Error when the recording has no gyroscope, fewer than two
 ///   positions are given, or a position lies outside the recording.

@@ -28,16 +28,20 @@ double HalfSquaredAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 
 double WhiteNoiseStd(const RecordingView& recording,
                      std::span<const StaticInterval> intervals) {
+  // On the gyroscope's own samples (the rows' means of a gyroscope recorded
+  // apart share samples with their neighbours: their second differences
+  // would not be white noise's).
+  const GyroSamples s = SamplesOf(recording);
   std::vector<double> stds;
   for (const StaticInterval& in : intervals) {
-    if (in.end - in.begin < 3) continue;
+    const auto [first, last] =
+        SamplesWithin(s, recording.time_s[in.begin], recording.time_s[in.end - 1]);
+    if (last < first + 3) continue;
     double sum = 0.0;
-    for (std::size_t i = in.begin + 1; i + 1 < in.end; ++i) {
-      sum += (recording.gyro_radps[i + 1] - 2.0 * recording.gyro_radps[i] +
-              recording.gyro_radps[i - 1])
-                 .squaredNorm();
+    for (std::size_t i = first + 1; i + 1 < last; ++i) {
+      sum += (s.rate[i + 1] - 2.0 * s.rate[i] + s.rate[i - 1]).squaredNorm();
     }
-    stds.push_back(std::sqrt(sum / (18.0 * static_cast<double>(in.end - in.begin - 2))));
+    stds.push_back(std::sqrt(sum / (18.0 * static_cast<double>(last - first - 2))));
   }
   if (stds.empty()) return 0.0;
   std::nth_element(stds.begin(), stds.begin() + stds.size() / 2, stds.end());

@@ -182,11 +182,15 @@ StreamMerge MergeGyroLog(Recording& recording,
     recording.gyro_radps = gyro_log.accel;
   } else {
     m.resampled = true;
-    Resample(recording, gyro_log, GyroTimesOnAccelClock(gyro_log, offset_s), m);
+    std::vector<double> tg = GyroTimesOnAccelClock(gyro_log, offset_s);
+    Resample(recording, gyro_log, tg, m);
     Judge(m);
+    recording.gyro_samples_time_s = std::move(tg);
+    recording.gyro_samples = gyro_log.accel;
   }
   const double scale = units == GyroUnits::kCounts ? 1.0 : *FixedRadpsPerUnit(units);
   for (Eigen::Vector3d& v : recording.gyro_radps) v *= scale;
+  for (Eigen::Vector3d& v : recording.gyro_samples) v *= scale;
   recording.gyro_units =
       units == GyroUnits::kCounts ? GyroUnits::kCounts : GyroUnits::kRadps;
   recording.gyro_log_units = units;

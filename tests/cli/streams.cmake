@@ -30,10 +30,17 @@ set_tests_properties(cli.calibrate_two_rate_bag_as_single_stream PROPERTIES LABE
 # the single-stream logs at each stream's stamps (make_streams.py). The
 # accelerometer is the same samples as the single stream at its stamps: the
 # same numbers. The gyroscope, the same samples as the single stream at its
-# stamps averaged onto the accelerometer's rows, differs from that file's by
-# RMS 0.8σ over 30 seeds, 4.0σ at most over their 270 entries of M
-# (bench/streams_mc.py, docs/validation.md): within 4.5σ on each of its 12
-# parameters (a broken join is off by far more).
+# stamps (its turns integrated and its noise measured over them), differs
+# from that file's by what the accelerometer at the other rate changes (the
+# positions' edges and gravity directions): over 30 seeds by RMS 0.52-0.69σ
+# (bench/streams_mc.py, docs/validation.md), so within 1σ in the study's
+# sense, checked here as the RMS over the gyroscope's 12 parameters within
+# 1σ and each within 3σ (4.4 standard deviations of the difference at
+# 63/200 Hz; 3 of the 29 seeds there reach 3.4-4.2σ on one entry of M, by
+# the two-stream file's 1σ). Seed 11 measures RMS 0.90σ, 2.7σ at most,
+# at 63/200 Hz and 0.26σ, 0.6σ at 250/400 Hz; the same join with the turns
+# integrated over the rows' means and the noise taken from them gives RMS
+# 1.04σ at 63/200 Hz.
 foreach(_rates 63/200 250/400)
   string(REPLACE "/" "_" _name ${_rates})
   string(REGEX REPLACE "/.*" "" _ar ${_rates})
@@ -46,7 +53,7 @@ foreach(_rates 63/200 250/400)
       \"$0\" calibrate single_at_accel.csv -o at_accel.json >/dev/null
       \"$0\" calibrate single_at_gyro.csv -o at_gyro.json >/dev/null
       ${MPCAL_PYTHON} '${CMAKE_CURRENT_SOURCE_DIR}/within_sigma.py' at_accel.json two.json 1e-9 1e9
-      ${MPCAL_PYTHON} '${CMAKE_CURRENT_SOURCE_DIR}/within_sigma.py' at_gyro.json two.json 1e9 4.5"
+      ${MPCAL_PYTHON} '${CMAKE_CURRENT_SOURCE_DIR}/within_sigma.py' at_gyro.json two.json 1e9 3 1"
       $<TARGET_FILE:mpcal_cli>
     WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
   set_tests_properties(cli.calibrate_two_rates_${_name}_as_single_streams PROPERTIES LABELS cli)

@@ -82,6 +82,14 @@ TEST(MergeTwoStreams, TheGyroscopeOnTheAccelerometersStampsKeepsTheTurnsAngle) {
         ASSERT_NEAR(rec.gyro_radps[i].z(), mean, 0.01) << "row " << i;
       }
       EXPECT_TRUE(m.findings.empty());
+      // The gyroscope's own samples are kept, on the accelerometer's clock:
+      // the turns are integrated over them (turn_problem.h, SamplesOf).
+      ASSERT_EQ(rec.gyro_samples.size(), gyro.size());
+      ASSERT_EQ(rec.gyro_samples_time_s.size(), gyro.size());
+      for (std::size_t k = 0; k < gyro.size(); ++k) {
+        ASSERT_EQ(rec.gyro_samples_time_s[k], gyro.time_s[k]);
+        ASSERT_EQ(rec.gyro_samples[k], gyro.accel[k]);
+      }
     }
   }
 }
@@ -147,6 +155,7 @@ TEST(MergeTwoStreams, TheSameSamplesAreTakenRowByRow) {
   const Recording gyro = StreamAt(100.0, 0.0, 2.0, true);
   const StreamMerge m = MergeGyroLog(rec, gyro, GyroUnits::kRadps);
   EXPECT_FALSE(m.resampled);
+  EXPECT_TRUE(rec.gyro_samples.empty());
   for (std::size_t i = 0; i < rec.size(); ++i) {
     ASSERT_EQ(rec.gyro_radps[i].z(), gyro.accel[i].z());
   }
