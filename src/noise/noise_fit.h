@@ -1,4 +1,6 @@
-// The term fit of one axis (noise_fit.cc), for noise.cc.
+// Private to src/noise/: the term fit of one axis (noise_fit.cc), for
+// noise.cc, and the cluster sizes of an Allan curve (allan.cc), for
+// allan_sums.cc and the fit's record-length forecasts (term_measure.cc).
 #pragma once
 
 #include <cstdint>
@@ -8,8 +10,6 @@
 
 namespace mpcal::internal {
 
-/// Terms, intervals and record-length advice of one axis from its Allan
-/// curve; `phase_points` = samples + 1.
 /// The cluster sizes m of a record of `samples` samples (log-spaced, allan.cc).
 /// Each a multiple of its stride ClusterStride (1 below 2 min_overlaps).
 std::vector<std::int64_t> ClusterSizes(std::int64_t samples, const AllanOptions& options);
@@ -17,6 +17,8 @@ std::vector<std::int64_t> ClusterSizes(std::int64_t samples, const AllanOptions&
 /// at most m / min_overlaps (at least 1).
 std::int64_t ClusterStride(std::int64_t m, const AllanOptions& options);
 
+/// Terms, intervals and record-length advice of one axis from its Allan
+/// curve; `phase_points` = samples + 1.
 AxisNoise AnalyseAxis(std::vector<AllanPoint> curve,
                       double phase_points,
                       const NoiseOptions& options);
