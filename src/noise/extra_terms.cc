@@ -105,24 +105,8 @@ Fit SearchShape(std::vector<AllanPoint>& curve,
       lo = std::max(here - step, std::log(grid.front()));
       hi = std::min(here + step, std::log(grid.back()));
     }
-    // Golden section on [lo, hi].
-    constexpr double kGolden = 0.6180339887498949;
-    double a = lo, b = hi;
-    double x1 = b - kGolden * (b - a), x2 = a + kGolden * (b - a);
-    double f1 = cost_at(x1), f2 = cost_at(x2);
-    for (int it = 0; it < 24; ++it) {
-      if (f1 < f2) {
-        b = x2, x2 = x1, f2 = f1;
-        x1 = b - kGolden * (b - a);
-        f1 = cost_at(x1);
-      } else {
-        a = x1, x1 = x2, f1 = f2;
-        x2 = a + kGolden * (b - a);
-        f2 = cost_at(x2);
-      }
-    }
-    const double found = f1 < f2 ? x1 : x2;
-    if (round == 0 || std::isfinite(std::min(f1, f2))) best = found;
+    const LineMinimum found = GoldenSection(cost_at, lo, hi, 24);
+    if (round == 0 || std::isfinite(found.cost)) best = found.at;
     ShapeOf(shape, col) = std::exp(best);
     const Fit next =
         FitTerms(curve, allow, phase_points, o, signed_terms, shape, required, &fit.m);

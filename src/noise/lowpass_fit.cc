@@ -53,23 +53,10 @@ Fit SearchLowpass(std::vector<AllanPoint>& curve,
     m.lowpass_phi = phi;
     return FitNonNegative(curve, weight, m, allowed, 0, required).cost;
   };
-  constexpr double kGolden = 0.6180339887498949;
-  double a = 0.0, b = std::exp(-tau0_s / curve.front().tau_s);
-  double x1 = b - kGolden * (b - a), x2 = a + kGolden * (b - a);
-  double f1 = cost_at(x1), f2 = cost_at(x2);
-  for (int it = 0; it < 30; ++it) {
-    if (f1 < f2) {
-      b = x2, x2 = x1, f2 = f1;
-      x1 = b - kGolden * (b - a);
-      f1 = cost_at(x1);
-    } else {
-      a = x1, x1 = x2, f1 = f2;
-      x2 = a + kGolden * (b - a);
-      f2 = cost_at(x2);
-    }
-  }
-  shape.lowpass_phi = f1 < f2 ? x1 : x2;
-  if (!std::isfinite(std::min(f1, f2))) return Fit{};
+  const LineMinimum found =
+      GoldenSection(cost_at, 0.0, std::exp(-tau0_s / curve.front().tau_s), 30);
+  shape.lowpass_phi = found.at;
+  if (!std::isfinite(found.cost)) return Fit{};
   return FitTerms(curve, allowed, phase_points, o, 0, shape, required, &fit.m);
 }
 

@@ -183,4 +183,25 @@ std::vector<std::size_t> DominatedPoints(const std::vector<AllanPoint>& curve,
   return out;
 }
 
+LineMinimum GoldenSection(const std::function<double(double)>& cost,
+                          double a,
+                          double b,
+                          int iterations) {
+  constexpr double kGolden = 0.6180339887498949;  // (√5 − 1) / 2
+  double x1 = b - kGolden * (b - a), x2 = a + kGolden * (b - a);
+  double f1 = cost(x1), f2 = cost(x2);
+  for (int it = 0; it < iterations; ++it) {
+    if (f1 < f2) {
+      b = x2, x2 = x1, f2 = f1;
+      x1 = b - kGolden * (b - a);
+      f1 = cost(x1);
+    } else {
+      a = x1, x1 = x2, f1 = f2;
+      x2 = a + kGolden * (b - a);
+      f2 = cost(x2);
+    }
+  }
+  return f1 < f2 ? LineMinimum{x1, f1} : LineMinimum{x2, f2};
+}
+
 }  // namespace mpcal::internal::noise_fit

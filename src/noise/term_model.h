@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -124,5 +125,18 @@ std::vector<std::size_t> DominatedPoints(const std::vector<AllanPoint>& curve,
                                          const Model& m,
                                          int t,
                                          double dominance);
+
+/// The least of `cost` on [a, b] by golden-section search over `iterations`
+/// steps: where, and the cost there (the better of the last two probes; an
+/// infinite cost when no probe fitted). For the one-dimensional shapes of
+/// the fit: a correlation time, a period, a filter's coefficient.
+struct LineMinimum {
+  double at = 0.0;
+  double cost = std::numeric_limits<double>::infinity();
+};
+LineMinimum GoldenSection(const std::function<double(double)>& cost,
+                          double a,
+                          double b,
+                          int iterations);
 
 }  // namespace mpcal::internal::noise_fit
