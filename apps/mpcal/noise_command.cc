@@ -264,6 +264,8 @@ void PrintFindings(const SensorNoise& s, bool gyro, const NoiseResult& r) {
 // longer record would not show it), look at when a term is not seen yet (a
 // longer record would show it), do not use when not even the white noise
 // shows: the record is not still noise.
+// One verdict line per kind of term; to be split by kind.
+// NOLINTNEXTLINE(readability-function-cognitive-complexity)
 void PrintSensorVerdict(const SensorNoise& s, bool gyro, const NoiseResult& r) {
   std::vector<std::string> not_seen, disagree;
   bool white_missing = false;
@@ -623,6 +625,8 @@ void Run(NoiseFlags& f) {
 
 }  // namespace
 
+// The command's flags, declared in one place as every command's are.
+// NOLINTNEXTLINE(readability-function-size)
 void AddNoiseCommand(CLI::App& root) {
   auto f = std::make_shared<NoiseFlags>();
   CLI::App* app = root.add_subcommand(

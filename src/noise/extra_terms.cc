@@ -198,6 +198,8 @@ TauRange ExtraRegion(const std::vector<AllanPoint>& curve, const Model& m, int c
 
 }  // namespace
 
+// Each candidate term's admission tests in sequence; to be split into them.
+// NOLINTNEXTLINE(readability-function-cognitive-complexity,readability-function-size)
 Fit AddExtraTerms(std::vector<AllanPoint>& curve,
                   const Fit& base,
                   TermMask signed_terms,

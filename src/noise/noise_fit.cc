@@ -76,6 +76,8 @@ double AxisNoise::FittedAvar(double tau_s) const {
 
 namespace internal {
 
+// The fit's stages in their order, one after another; to be split into them.
+// NOLINTNEXTLINE(readability-function-cognitive-complexity,readability-function-size)
 AxisNoise AnalyseAxis(std::vector<AllanPoint> curve,
                       double phase_points,
                       const NoiseOptions& o) {

@@ -68,7 +68,7 @@ ParameterGroup GroupOf(int index) {
 }
 
 std::string GuideOptions::Validate() const {
-  if (const std::string bad = detect.Validate(); !bad.empty()) return bad;
+  if (std::string bad = detect.Validate(); !bad.empty()) return bad;
   if (!(target_bias_mps2 >= 0.0) || !Finite(target_bias_mps2))
     return "target_bias_mps2 must be >= 0";
   if (!(target_scale >= 0.0) || !Finite(target_scale)) return "target_scale must be >= 0";

@@ -110,6 +110,8 @@ std::string TermsTable(const SensorNoise& s, bool gyro) {
   return t.Finish();
 }
 
+// One line series per term; to be split by term.
+// NOLINTNEXTLINE(readability-function-size)
 std::string AllanPlot(const AxisNoise& a, bool gyro, int axis) {
   LinePlotSpec spec;
   spec.log_x = true;
