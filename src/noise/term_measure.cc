@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -90,6 +91,70 @@ double RecordNeeded(
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+// IEEE 952 reads a term off the stretch of the curve where its slope holds,
+// and where that stretch begins and ends is a choice the reading depends on.
+// The term read on a stretch [first, last] of the curve: what the curve's
+// variance leaves when the other fitted columns are taken away, over the
+// term's own shape, averaged with the fit's weights (1 / var of each
+// reading); and the variance of that average, inflated for correlated τ as
+// the fit's own.
+struct RegionReading {
+  double c = 0.0;
+  double variance = std::numeric_limits<double>::infinity();
+};
+
+RegionReading ReadOnRegion(const std::vector<AllanPoint>& curve,
+                           const Model& m,
+                           int t,
+                           std::size_t first,
+                           std::size_t last,
+                           const NoiseOptions& o) {
+  double sum_w = 0.0, sum_wr = 0.0;
+  for (std::size_t i = first; i <= last; ++i) {
+    const double tau = curve[i].tau_s;
+    const double shape = m.Column(t, tau);
+    const double model = m.Avar(tau);
+    if (!(shape > 0.0 && model > 0.0)) continue;
+    const double reading = (curve[i].avar - (model - m.Part(t, tau))) / shape;
+    const double w = curve[i].edf * shape * shape / (2.0 * model * model);
+    sum_w += w;
+    sum_wr += w * reading;
+  }
+  if (!(sum_w > 0.0)) return {};
+  return {sum_wr / sum_w,
+          o.allan.points_per_octave / o.independent_points_per_octave / sum_w};
+}
+
+// The choice of region's part of a measured coefficient's variance: the
+// term read on its region and on that region shortened by an octave at
+// either end (while min_region_points remain); the largest squared distance
+// of a reading from the fitted coefficient beyond the reading's own
+// variance (the curve's uncertainty, counted once, in the fit's). Zero when
+// the readings agree with the fit within their noise, as they do when the
+// model holds across the region.
+double RegionChoiceVariance(const std::vector<AllanPoint>& curve,
+                            const Model& m,
+                            int t,
+                            const std::vector<std::size_t>& region,
+                            const NoiseOptions& o) {
+  const std::size_t first = region.front(), last = region.back();
+  const auto octave = static_cast<std::size_t>(o.allan.points_per_octave);
+  const auto min_points = static_cast<std::size_t>(o.min_region_points);
+  std::vector<std::pair<std::size_t, std::size_t>> stretches = {{first, last}};
+  if (last - first + 1 >= min_points + octave) {
+    stretches.emplace_back(first + octave, last);
+    stretches.emplace_back(first, last - octave);
+  }
+  double excess = 0.0;
+  for (const auto& [lo, hi] : stretches) {
+    const RegionReading r = ReadOnRegion(curve, m, t, lo, hi, o);
+    if (!std::isfinite(r.variance)) continue;
+    const double d = r.c - m.c[t];
+    excess = std::max(excess, d * d - r.variance);
+  }
+  return excess;
+}
+
 }  // namespace
 
 RootInterval CoefficientInterval(double c, double variance, double confidence) {
@@ -111,7 +176,11 @@ void MeasureTerms(const std::vector<AllanPoint>& curve,
     const bool significant = c > z * std::sqrt(fit.variance[t]);
     if (static_cast<int>(region.size()) < o.min_region_points || !significant) continue;
     TermEstimate& e = out.terms[t];
-    const RootInterval v = CoefficientInterval(c, fit.variance[t], o.allan.confidence);
+    // The interval carries the curve's uncertainty (the fit's variance) and
+    // that of the choice of region.
+    const double variance =
+        fit.variance[t] + RegionChoiceVariance(curve, fit.m, t, region, o);
+    const RootInterval v = CoefficientInterval(c, variance, o.allan.confidence);
     e.status = TermStatus::kMeasured;
     e.value = v.value;
     e.lo = v.lo;
