@@ -22,11 +22,17 @@ def project_version():
 
 class CMakeBuild(build_ext):
     def build_extension(self, ext):
-        tree = pathlib.Path(self.build_temp).resolve() / "cmake"
-        subprocess.run(["cmake", "-S", str(ROOT), "-B", str(tree),
-                        "-DCMAKE_BUILD_TYPE=Release", "-DMPCAL_BUILD_TESTS=OFF",
-                        "-DMPCAL_BUILD_BENCH=OFF", "-DMPCAL_BUILD_EXAMPLES=OFF",
-                        f"-DPython3_EXECUTABLE={sys.executable}"], check=True)
+        # MPCAL_BUILD_DIR: a tree CMake configured already (`make build`'s
+        # build/), in which only the extension is brought up to date, instead
+        # of a fresh tree that compiles the whole library again.
+        given = os.environ.get("MPCAL_BUILD_DIR")
+        tree = (pathlib.Path(given) if given else
+                pathlib.Path(self.build_temp) / "cmake").resolve()
+        if not given:
+            subprocess.run(["cmake", "-S", str(ROOT), "-B", str(tree),
+                            "-DCMAKE_BUILD_TYPE=Release", "-DMPCAL_BUILD_TESTS=OFF",
+                            "-DMPCAL_BUILD_BENCH=OFF", "-DMPCAL_BUILD_EXAMPLES=OFF",
+                            f"-DPython3_EXECUTABLE={sys.executable}"], check=True)
         jobs = os.environ.get("MPCAL_JOBS", str(os.cpu_count() or 1))
         subprocess.run(["cmake", "--build", str(tree), "--target", "_mpcal", "-j", jobs],
                        check=True)

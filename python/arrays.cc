@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstring>
 #include <optional>
 #include <span>
 #include <vector>
@@ -42,28 +41,7 @@ py::array ViewOf(const double* values, std::size_t rows, int columns, py::handle
   return view;
 }
 
-std::vector<Eigen::Vector3d> ToVectors(const Rows& rows) {
-  std::vector<Eigen::Vector3d> out(static_cast<std::size_t>(rows.shape(0)));
-  if (!out.empty()) std::copy_n(rows.data(), 3 * out.size(), out.front().data());
-  return out;
-}
-
 namespace {
-
-constexpr std::size_t kBlock = 4096;  // doubles: 32 KiB, within the L1 cache
-
-// Whether none of `n` doubles is NaN or infinite (all exponent bits set).
-// On the bits, which the compiler vectorises (std::isfinite it does not).
-bool AllFinite(const double* values, std::size_t n) {
-  constexpr std::uint64_t kExponent = 0x7ff0000000000000ULL;
-  std::uint64_t not_finite = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    std::uint64_t bits = 0;
-    std::memcpy(&bits, values + i, sizeof bits);
-    not_finite |= static_cast<std::uint64_t>((bits & kExponent) == kExponent);
-  }
-  return not_finite == 0;
-}
 
 // Fresh memory is mapped by the kernel page by page as it is first written:
 // for the 54 MB of a 1.7 M-row session, 13,000 faults of 4 KiB pages, which
@@ -85,19 +63,12 @@ void AdviseHugePages(const void* data, std::size_t bytes) {
 #endif
 }
 
-// `count` doubles of `in` copied into the empty vector `out`; false when one
-// is NaN or infinite. Block by block, each checked while it is in the cache
-// the copy brought it to: one pass over the caller's memory. Reserved, not
+// `count` doubles of `in` copied into the empty vector `out`. Reserved, not
 // resized (which would write every value twice, zeros first).
-bool CopyFinite(const double* in, std::size_t count, std::vector<double>& out) {
+void CopyRows(const double* in, std::size_t count, std::vector<double>& out) {
   out.reserve(count);
   AdviseHugePages(out.data(), count * sizeof(double));
-  for (std::size_t begin = 0; begin < count; begin += kBlock) {
-    const std::size_t n = std::min(kBlock, count - begin);
-    out.insert(out.end(), in + begin, in + begin + n);
-    if (!AllFinite(out.data() + begin, n)) return false;
-  }
-  return true;
+  out.insert(out.end(), in, in + count);
 }
 
 // Whether `data` may be seen as doubles in place (numpy's arrays are,
@@ -106,23 +77,14 @@ bool AlignedForDoubles(const double* data) {
   return reinterpret_cast<std::uintptr_t>(data) % alignof(double) == 0;
 }
 
-// The caller's `count` doubles at `data` as the library reads them, in
-// `seen`: in place when aligned as doubles (checked finite in one pass),
-// else copied into `own`. False when one is NaN or infinite.
-bool SeeOrCopy(const double* data,
-               std::size_t count,
-               std::vector<double>& own,
-               std::span<const double>& seen) {
-  if (!AlignedForDoubles(data)) {
-    if (!CopyFinite(data, count, own)) return false;
-    seen = own;
-    return true;
-  }
-  for (std::size_t begin = 0; begin < count; begin += kBlock) {
-    if (!AllFinite(data + begin, std::min(kBlock, count - begin))) return false;
-  }
-  seen = {data, count};
-  return true;
+// The caller's `count` doubles at `data` as the library reads them: in
+// place when aligned as doubles, else copied into `own`.
+std::span<const double> SeeOrCopy(const double* data,
+                                  std::size_t count,
+                                  std::vector<double>& own) {
+  if (AlignedForDoubles(data)) return {data, count};
+  CopyRows(data, count, own);
+  return own;
 }
 
 }  // namespace
@@ -152,29 +114,6 @@ GyroUnits GyroUnitsArgument(const std::string& name, const char* argument) {
         Suggest(Option::kLogGyroUnits, ""));
   }
   return *units;
-}
-
-Recording ToRecording(const Rows& t,
-                      const Rows& accel,
-                      const py::object& gyro,
-                      const std::string& units,
-                      const std::string& gyro_units) {
-  Recording recording;
-  recording.source = "<arrays>";
-  recording.units = AccelUnitsArgument(units, "units");
-  recording.time_s.assign(t.data(), t.data() + t.shape(0));
-  recording.accel = ToVectors(accel);
-  if (!gyro.is_none()) {
-    const GyroUnits given = GyroUnitsArgument(gyro_units, "gyro_units");
-    recording.gyro_radps = ToVectors(gyro.cast<Rows>());
-    recording.gyro_log_units = given;
-    recording.gyro_units =
-        given == GyroUnits::kCounts ? GyroUnits::kCounts : GyroUnits::kRadps;
-    if (const auto radps = FixedRadpsPerUnit(given); radps && *radps != 1.0) {
-      for (Eigen::Vector3d& w : recording.gyro_radps) w *= *radps;
-    }
-  }
-  return recording;
 }
 
 namespace {
@@ -232,29 +171,17 @@ std::shared_ptr<const ArraysView> ViewArrays(const Rows& t,
   const double radps = FixedRadpsPerUnit(given).value_or(1.0);
   if (gyro_rows) KeepGyroSamples(t, gyro, *gyro_rows, radps, out.get());
   const py::gil_scoped_release unlocked;
-  std::span<const double> seen;
-  if (!SeeOrCopy(t.data(), n, out->own_time, seen)) {
-    out->not_finite = "t";
-    return out;
-  }
-  rows.time_s = seen;
-  if (!SeeOrCopy(accel.data(), 3 * n, out->own_accel, seen)) {
-    out->not_finite = "accel";
-    return out;
-  }
-  rows.accel = XyzRows(seen.data(), n);
+  rows.time_s = SeeOrCopy(t.data(), n, out->own_time);
+  rows.accel = XyzRows(SeeOrCopy(accel.data(), 3 * n, out->own_accel).data(), n);
   if (gyro_rows) {
+    std::span<const double> seen;
     if (radps != 1.0) {
       // deg/s: converted into rows of its own, as the log reader does.
-      if (!CopyFinite(gyro_rows->data(), 3 * n, out->own_gyro)) {
-        out->not_finite = "gyro";
-        return out;
-      }
+      CopyRows(gyro_rows->data(), 3 * n, out->own_gyro);
       for (double& w : out->own_gyro) w *= radps;
       seen = out->own_gyro;
-    } else if (!SeeOrCopy(gyro_rows->data(), 3 * n, out->own_gyro, seen)) {
-      out->not_finite = "gyro";
-      return out;
+    } else {
+      seen = SeeOrCopy(gyro_rows->data(), 3 * n, out->own_gyro);
     }
     rows.gyro_radps = XyzRows(seen.data(), n);
   }

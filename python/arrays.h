@@ -18,20 +18,19 @@ namespace mpcal::python {
 namespace py = pybind11;
 
 /// float64, C order: what the Python layer (mpcal/__init__.py) hands over
-/// once it has checked shape, dtype and finiteness.
+/// once it has checked shape and dtype.
 using Rows = py::array_t<double, py::array::c_style>;
 
 /// A read-only numpy view of `values` (N×3 when `columns` is 3, else N)
 /// that keeps `owner` alive: no copy.
 py::array ViewOf(const double* values, std::size_t rows, int columns, py::handle owner);
 
-/// The rows of an N×3 array as the library holds them (one copy).
-std::vector<Eigen::Vector3d> ToVectors(const Rows& rows);
-
-/// The arrays of calibrate as the library reads them: views of the
-/// caller's memory (float64, C order, as mpcal/__init__.py hands them
-/// over), every value checked finite in one pass without the GIL; no copy.
-/// A gyroscope in deg/s is converted to rad/s into rows of its own, and
+/// The arrays of calibrate, detect and noise as the library reads them:
+/// views of the caller's memory (float64, C order, as mpcal/__init__.py
+/// hands them over); no copy, and no pass over them here: the library
+/// refuses a value that is NaN or infinite where it first reads the rows
+/// (NotFiniteError, which the module raises naming the argument). A
+/// gyroscope in deg/s is converted to rad/s into rows of its own, and
 /// memory not aligned as a double is copied. The view reads the arrays in
 /// place: they must stay alive, and unchanged, while the library reads them
 /// (Interruptible's `in_use`): these very objects, `gyro` already cast (a
@@ -46,9 +45,6 @@ struct ArraysView {
   std::vector<double> own_gyro;
   /// A Recording's own gyroscope samples, converted (see KeepGyroSamples).
   std::vector<Eigen::Vector3d> own_gyro_samples;
-  /// The argument ("t", "accel", "gyro") holding a value that is NaN or
-  /// infinite; empty when all are finite (then `rows` is whole).
-  std::string not_finite;
 };
 /// Held by a shared pointer: `rows` may point into the object's own vectors.
 std::shared_ptr<const ArraysView> ViewArrays(const Rows& t,
@@ -57,15 +53,6 @@ std::shared_ptr<const ArraysView> ViewArrays(const Rows& t,
                                              const py::object& gyro,
                                              const std::string& units,
                                              const std::string& gyro_units);
-
-/// A Recording from arrays (t: N seconds; accel: N×3 in `units`; gyro: N×3
-/// or None, in `gyro_units`: deg/s converted to rad/s as the log reader
-/// does, counts kept).
-Recording ToRecording(const Rows& t,
-                      const Rows& accel,
-                      const py::object& gyro,
-                      const std::string& units,
-                      const std::string& gyro_units);
 
 /// "mps2", "g", "counts" (as ParseAccelUnits) or throws mpcal::Error
 /// (kOption) naming `argument`.

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -37,7 +39,10 @@ py::dict Detect(const Rows& t,
                 const std::string& units,
                 double gravity_mps2,
                 const py::dict& o) {
-  Recording recording = ToRecording(t, accel, py::none(), units, "rads");
+  // Read in place, as calibrate reads them.
+  std::shared_ptr<const ArraysView> arrays =
+      ViewArrays(t, accel, std::nullopt, py::none(), units, "rads");
+  const RecordingView rows = arrays->rows;
   DetectOptions options;
   options.window_s = o["window_s"].cast<double>();
   options.min_static_s = o["min_static_s"].cast<double>();
@@ -51,17 +56,18 @@ py::dict Detect(const Rows& t,
     throw Error(ErrorKind::kOption, "detect: " + bad);
   }
   CoverageOptions coverage_options;
-  coverage_options.units = recording.units;
+  coverage_options.units = rows.units;
   // The hold a new position needs, as `mpcal detect` advises it.
   coverage_options.hold_s = std::max(
       10.0, std::ceil(options.min_static_s + 2 * options.settle_s + options.window_s));
   auto [detection, coverage] = Interruptible(
-      [recording = std::move(recording), options, coverage_options, gravity_mps2] {
-        CheckUnits(recording, gravity_mps2);
-        DetectResult found = DetectStatic(recording, options);
+      [rows, arrays = std::move(arrays), options, coverage_options, gravity_mps2] {
+        CheckUnits(rows, gravity_mps2);
+        DetectResult found = DetectStatic(rows, options);
         CoverageResult covered = AssessCoverage(found, coverage_options);
         return std::pair{std::move(found), std::move(covered)};
-      });
+      },
+      py::make_tuple(t, accel));
   // The document `mpcal detect --json` writes (mpcal.detection/1), with
   // the outcome and the findings' advice as facts beside its sentences.
   py::dict d = py::module_::import("json").attr("loads")(DetectionReportJson(

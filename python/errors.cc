@@ -11,6 +11,7 @@
 
 #include "mpcal/calibrate.h"
 #include "mpcal/error.h"
+#include "mpcal/not_finite.h"
 #include "mpcal/units.h"
 
 namespace mpcal::python {
@@ -83,6 +84,12 @@ py::dict Figures(const Error& e) {
     static constexpr const char* kGuess[] = {
         "unknown", "g", "mps2", "counts", "gravity_removed"};
     figures["looks_like"] = kGuess[static_cast<int>(f.guess)];
+  }
+  if (const auto* bad = dynamic_cast<const NotFiniteError*>(&e)) {
+    // The argument of the Python functions that holds the column.
+    static constexpr const char* kArgument[] = {"t", "accel", "gyro"};
+    figures["argument"] = kArgument[static_cast<int>(bad->column())];
+    figures["row"] = bad->row();
   }
   if (const auto* session = dynamic_cast<const SessionError*>(&e)) {
     static constexpr const char* kProblem[] = {

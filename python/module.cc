@@ -246,23 +246,22 @@ py::tuple CalibrateRows(const RecordingView& rows,
 }
 
 // Arrays of the caller's, read where they are (float64 in C order, as
-// mpcal/__init__.py hands them over) and checked finite in one pass.
-// Returns the Calibration, or the name of the argument holding a NaN or an
-// infinity (mpcal/__init__.py words the error, with the row).
-py::object Calibrate(const Rows& t,
-                     const Rows& accel,
-                     const py::object& gyro,
-                     const std::string& units,
-                     const std::string& gyro_units,
-                     const py::object& gravity,
-                     const py::dict& options,
-                     const std::string& provenance) {
+// mpcal/__init__.py hands them over). A NaN or an infinity in them the
+// library refuses as it first reads the rows (NotFiniteError: the argument
+// and the row; mpcal/__init__.py words the error).
+py::tuple Calibrate(const Rows& t,
+                    const Rows& accel,
+                    const py::object& gyro,
+                    const std::string& units,
+                    const std::string& gyro_units,
+                    const py::object& gravity,
+                    const py::dict& options,
+                    const std::string& provenance) {
   CalibrateOptionsFrom(options, gravity);  // bad options before the rows
   std::optional<Rows> gyro_rows;
   if (!gyro.is_none()) gyro_rows = gyro.cast<Rows>();
   std::shared_ptr<const ArraysView> arrays =
       ViewArrays(t, accel, gyro_rows, gyro, units, gyro_units);
-  if (!arrays->not_finite.empty()) return py::str(arrays->not_finite);
   const RecordingView rows = arrays->rows;
   py::object in_use =
       gyro_rows ? py::make_tuple(t, accel, *gyro_rows) : py::make_tuple(t, accel);

@@ -37,7 +37,7 @@ DetectOptions DetectOptionsFrom(const py::dict& o) {
 
 // The part `mpcal noise` analyses: the whole record when the sensor never
 // moved (or `whole`), else detection's longest still part.
-NoiseResult Analyse(const Recording& rows,
+NoiseResult Analyse(const RecordingView& rows,
                     const NoiseOptions& options,
                     const DetectOptions& detect,
                     bool whole,
@@ -75,21 +75,34 @@ py::dict Noise(const Rows& t,
   if (const std::string bad = options.Validate(); !bad.empty()) {
     throw Error(ErrorKind::kOption, "noise: " + bad);
   }
-  auto rows =
-      std::make_shared<const Recording>(ToRecording(t, accel, gyro, units, gyro_units));
-  const std::optional<double> mps2_per_unit = FixedMps2PerUnit(rows->units);
-  if (!mps2_per_unit || rows->gyro_units == GyroUnits::kCounts) {
+  // Read in place, as calibrate reads them (a gyroscope in deg/s converted).
+  std::optional<Rows> gyro_rows;
+  if (!gyro.is_none()) gyro_rows = gyro.cast<Rows>();
+  std::shared_ptr<const ArraysView> arrays =
+      ViewArrays(t, accel, gyro_rows, gyro, units, gyro_units);
+  const RecordingView rows = arrays->rows;
+  const std::optional<double> mps2_per_unit = FixedMps2PerUnit(rows.units);
+  if (!mps2_per_unit || rows.gyro_units == GyroUnits::kCounts) {
     throw Error(ErrorKind::kUnits,
                 "the noise of raw counts has no unit: give readings in m/s² or g (and "
                 "rad/s or deg/s), e.g. corrected by a calibration made in counts "
                 "(Calibration.correct)",
                 Suggest(Option::kLogUnits));
   }
-  const NoiseResult result =
-      Interruptible([rows, options, detect, whole, gravity_mps2, k = *mps2_per_unit] {
-        CheckUnits(*rows, gravity_mps2);
-        return Analyse(*rows, options, detect, whole, k);
-      });
+  py::object in_use =
+      gyro_rows ? py::make_tuple(t, accel, *gyro_rows) : py::make_tuple(t, accel);
+  const NoiseResult result = Interruptible(
+      [rows,
+       arrays = std::move(arrays),
+       options,
+       detect,
+       whole,
+       gravity_mps2,
+       k = *mps2_per_unit] {
+        CheckUnits(rows, gravity_mps2);
+        return Analyse(rows, options, detect, whole, k);
+      },
+      std::move(in_use));
   return py::module_::import("json").attr("loads")(
       NoiseJson(result, "<arrays>", confidence));
 }

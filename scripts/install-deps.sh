@@ -55,6 +55,7 @@ develop=(
   tmux                 # the live screen of record driven and read (tests/cli/record_screen.sh)
   python3-pytest       # its tests (tests/python/)
   python3-matplotlib   # its example (examples/python/), drawn without a display
+  python3-setuptools python3-build python3-venv  # `pip install .` and its wheel, offline (docs/guide/python.md)
 )
 
 case ${1:-all} in

@@ -139,6 +139,8 @@ struct UnitsEvidence {
 
   static UnitsEvidence Of(const RecordingView& recording);
   /// Rows [begin, end) of `part` (the first call sets source and units).
+  /// \throws NotFiniteError for a gyroscope reading, or an accelerometer
+  ///   reading of those sampled, that is NaN or infinite.
   void Add(const RecordingView& part, std::size_t begin, std::size_t end);
 };
 

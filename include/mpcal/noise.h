@@ -48,6 +48,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -58,6 +59,7 @@
 #include "mpcal/detect.h"
 #include "mpcal/gap_counter.h"
 #include "mpcal/recording.h"
+#include "mpcal/recording_view.h"
 
 namespace mpcal {
 
@@ -422,7 +424,7 @@ struct NoiseSegment {
 /// The whole record when detection found it all still (one interval from
 /// within a settle time of its start to its end), else the longest static
 /// interval. std::nullopt when detection found none.
-std::optional<NoiseSegment> ChooseNoiseSegment(const Recording& recording,
+std::optional<NoiseSegment> ChooseNoiseSegment(const RecordingView& recording,
                                                const DetectResult& detection);
 
 /// The analysis of a recording.
@@ -507,10 +509,12 @@ class NoiseStream {
   NoiseStream& operator=(const NoiseStream&) = delete;
 
   /// Adds rows [begin, end) of `rows` (its gyroscope empty, or one reading
-  /// per row, the same in every call; times strictly increasing). Large
-  /// blocks run the gyroscope's sums on a second thread.
-  void Add(const Recording& rows, std::size_t begin, std::size_t end);
-  void Add(const Recording& rows) { Add(rows, 0, rows.size()); }
+  /// per row, the same in every call; times strictly increasing), read
+  /// where they are. Large blocks run the gyroscope's sums on a second
+  /// thread.
+  /// \throws NotFiniteError for a row holding a NaN or an infinity.
+  void Add(const RecordingView& rows, std::size_t begin, std::size_t end);
+  void Add(const RecordingView& rows) { Add(rows, 0, rows.size()); }
   std::size_t rows() const { return rows_; }
   bool has_gyro() const { return has_gyro_; }
   /// Unset when stillness is not judged.
@@ -532,7 +536,7 @@ class NoiseStream {
     double step_s = 0.0;
     double at_s = 0.0;
   };
-  void AddSteps(const std::vector<double>& t, std::size_t begin, std::size_t end);
+  void AddSteps(std::span<const double> t, std::size_t begin, std::size_t end);
   void NoteBlock(double step_s, double at_s);
 
   NoiseOptions options_;
@@ -556,7 +560,7 @@ class NoiseStream {
 /// \throws mpcal::Error for invalid options, fewer than 9 samples, or a
 ///   segment outside the recording; as NoiseStream::Finish (a rate that is
 ///   not uniform, an axis that produces no noise).
-NoiseResult AnalyseNoise(const Recording& recording,
+NoiseResult AnalyseNoise(const RecordingView& recording,
                          const NoiseSegment& segment,
                          double accel_mps2_per_unit,
                          const NoiseOptions& options);

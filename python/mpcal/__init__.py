@@ -12,7 +12,8 @@ units given (``"mps2"``, ``"g"`` or raw ``"counts"``), gyroscope readings in
 rad/s (``"rads"``), deg/s (``"dps"``) or ``"counts"``. Arrays are N×3
 (x, y, z per row) of any real dtype; the arrays :func:`read_log` and
 :func:`simulate_static` return are the library's own rows, taken as they
-are, and others are checked and copied.
+are; other arrays of float64 in C order are read in place, without a copy,
+and the rest converted first.
 
 Bad input raises :class:`mpcal.Error` (a ValueError) with ``kind``,
 ``advice`` (the keyword arguments the message speaks of) and ``figures``;
@@ -79,7 +80,7 @@ def _options(function, given, defaults):
 def _shaped(name, values, columns):
     """`values` as float64 in C order, (N,) or (N, 3) (a view when they are
     already, else a converted copy); else an mpcal.Error naming the
-    argument. The values are not looked at: see _rows and _not_finite."""
+    argument. The values are not looked at: see _rows and _reading."""
     a = np.asarray(values)
     if a.dtype.kind not in "fiu":
         raise Error(f"{name}: dtype {a.dtype} is not a real number type; give "
@@ -99,16 +100,32 @@ def _not_finite(name, a):
     finite = np.isfinite(a)
     bad = np.flatnonzero(~finite.reshape(len(a), -1).all(axis=1))
     return Error(f"{name}: row {bad[0]} is not finite ({a[bad[0]]}), and "
-                 f"{len(bad)} row(s) in all; drop or fill them first", kind="input")
+                 f"{len(bad)} row(s) in all; drop or fill them first", kind="input",
+                 figures={"argument": name, "row": int(bad[0]), "rows": len(bad)})
 
 
 def _rows(name, values, columns):
     """`values` as float64 in C order, (N,) or (N, 3), all finite; else an
-    mpcal.Error naming the argument."""
+    mpcal.Error naming the argument (for correct, whose arithmetic would
+    carry a NaN into its output)."""
     a = _shaped(name, values, columns)
     if not np.isfinite(a).all():
         raise _not_finite(name, a)
     return a
+
+
+def _reading(call, arrays, *args):
+    """`call(*args)`, which reads `arrays` ({argument: array or None}) in
+    place. The library refuses a NaN or an infinity where it first reads the
+    rows, naming the column and the row; that becomes the error naming the
+    argument (no pass over the arrays here when they are finite)."""
+    try:
+        return call(*args)
+    except Error as e:
+        name = e.figures.get("argument")
+        if arrays.get(name) is None:
+            raise
+        raise _not_finite(name, arrays[name]) from None
 
 
 def _same_memory(a, b):
@@ -223,7 +240,8 @@ def calibrate(t, accel, gyro=None, units="mps2", gravity=None, gyro_units="rads"
     ("auto", "on", "off"), ``calibrate_gyroscope`` (True).
 
     Arrays of float64 in C order (what numpy makes by default) are read
-    where they are, without a copy, each value checked finite; others are
+    where they are, without a copy (a NaN or an infinity is refused, naming
+    the argument and the row, as the library first reads them); others are
     converted first (as ``numpy.ascontiguousarray(a, dtype=float64)``), and
     a gyroscope in "dps" is converted to rad/s. The call reads them while
     it runs, without the GIL: change them from no other thread meanwhile.
@@ -247,15 +265,12 @@ def calibrate(t, accel, gyro=None, units="mps2", gravity=None, gyro_units="rads"
         result = Calibration(*native)
         _warn(result.findings)
         return result
-    # The library reads the arrays in place and checks them finite (one pass
-    # over the caller's memory); it names the argument that is not.
+    # The library reads the arrays in place.
     arrays = {"t": _shaped("t", t, 1), "accel": _shaped("accel", accel, 3),
               "gyro": None if gyro is None else _shaped("gyro", gyro, 3)}
     _same_length(**arrays)
-    native = _mpcal._calibrate(arrays["t"], arrays["accel"], arrays["gyro"], units,
-                               gyro_units, gravity, options, provenance)
-    if isinstance(native, str):
-        raise _not_finite(native, arrays[native])
+    native = _reading(_mpcal._calibrate, arrays, arrays["t"], arrays["accel"],
+                      arrays["gyro"], units, gyro_units, gravity, options, provenance)
     result = Calibration(*native)
     _warn(result.findings)
     return result
@@ -295,11 +310,11 @@ def detect(t, accel, units="mps2", gravity=None, **options):
     """
     defaults = {k: _CALIBRATE_DEFAULTS[k] for k in _DETECT_KEYS}
     options = _options("detect", options, defaults)
-    t = _rows("t", t, 1)
-    accel = _rows("accel", accel, 3)
-    _same_length(t=t, accel=accel)
+    arrays = {"t": _shaped("t", t, 1), "accel": _shaped("accel", accel, 3)}
+    _same_length(**arrays)
     g = 9.80665 if gravity is None else float(gravity)
-    result = _mpcal._detect(t, accel, units, g, options)
+    result = _reading(_mpcal._detect, arrays, arrays["t"], arrays["accel"], units, g,
+                      options)
     findings = _findings(result.pop("findings"))
     outcome = Finding(**result.pop("outcome"))
     section = Section(result)
@@ -405,16 +420,15 @@ def noise(t, accel, gyro=None, units="mps2", gyro_units="rads", gravity=None,
     defaults = {k: _CALIBRATE_DEFAULTS[k] for k in _DETECT_KEYS}
     defaults.update(_NOISE_DEFAULTS)
     options = _options("noise", options, defaults)
-    t = _rows("t", t, 1)
-    accel = _rows("accel", accel, 3)
-    if gyro is not None:
-        gyro = _rows("gyro", gyro, 3)
-    _same_length(t=t, accel=accel, gyro=gyro)
+    arrays = {"t": _shaped("t", t, 1), "accel": _shaped("accel", accel, 3),
+              "gyro": None if gyro is None else _shaped("gyro", gyro, 3)}
+    _same_length(**arrays)
     g = 9.80665 if gravity is None else float(gravity)
     whole = bool(options.pop("whole"))
     confidence = float(options.pop("confidence"))
-    return Section(_mpcal._noise(t, accel, gyro, units, gyro_units, g, whole, confidence,
-                                 options))
+    return Section(_reading(_mpcal._noise, arrays, arrays["t"], arrays["accel"],
+                            arrays["gyro"], units, gyro_units, g, whole, confidence,
+                            options))
 
 
 def load_calibration(path):
@@ -598,6 +612,8 @@ class Section(Mapping):
         return len(self._data)
 
     def to_dict(self):
+        """The section as plain Python objects (dicts, lists, numbers: the
+        JSON document's own units), a copy of its own."""
         return json.loads(json.dumps(self._data))
 
     def __repr__(self):

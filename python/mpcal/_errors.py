@@ -26,7 +26,8 @@ class Error(ValueError):
         The figures behind the finding, for the kinds that have them (units:
         "median_magnitude" in the given units, "gravity_mps2", "looks_like";
         session: "problem", "positions", "longest_still_s",
-        "still_fraction").
+        "still_fraction"; a value that is NaN or infinite: "argument", "row"
+        (the first, 0-based), "rows" (how many hold one)).
     """
 
     def __init__(self, message, kind="input", advice=None, stage=None,

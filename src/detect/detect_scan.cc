@@ -14,6 +14,7 @@
 #include "detect_steps.h"
 #include "motion_statistic.h"
 #include "mpcal/error.h"
+#include "mpcal/not_finite.h"
 #include "mpcal/units.h"
 
 namespace mpcal::internal {
@@ -65,9 +66,12 @@ SampleScan CheckAndScan(const RecordingView& recording, const std::string& src) 
   // The message for the first bad sample in [b, e).
   auto fail_in = [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
-      if (!std::isfinite(t[i]) || !a[i].allFinite()) {
-        throw Error(ErrorKind::kInput,
-                    fmt::format("{}: sample {} (t = {} s) is not finite", src, i, t[i]));
+      // The first read of the rows: a view of the caller's memory may hold
+      // what no log reader gives.
+      if (!std::isfinite(t[i])) throw NotFiniteError(src, RowColumn::kTime, i, t[i]);
+      for (int k = 0; k < 3; ++k) {
+        if (!std::isfinite(a[i][k]))
+          throw NotFiniteError(src, RowColumn::kAccel, i, a[i][k]);
       }
       if (i > 0 && !(t[i] > t[i - 1])) {
         throw Error(

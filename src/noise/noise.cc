@@ -137,7 +137,7 @@ SensorNoise AnalyseSensorNoise(const AllanSums& sums,
   return out;
 }
 
-std::optional<NoiseSegment> ChooseNoiseSegment(const Recording& recording,
+std::optional<NoiseSegment> ChooseNoiseSegment(const RecordingView& recording,
                                                const DetectResult& detection) {
   if (detection.intervals.empty()) return std::nullopt;
   NoiseSegment s;

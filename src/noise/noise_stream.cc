@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "mpcal/not_finite.h"
+
 #include "mpcal/error.h"
 #include "mpcal/noise.h"
 #include "mpcal/plausible.h"
@@ -83,10 +85,10 @@ void NoiseStream::NoteBlock(double step_s, double at_s) {
 
 // The mean step of each block is a difference of two times a block apart:
 // it keeps its digits where a single step of a large time stamp does not.
-void NoiseStream::AddSteps(const std::vector<double>& t,
+void NoiseStream::AddSteps(std::span<const double> t,
                            std::size_t begin,
                            std::size_t end) {
-  gaps_.Add(std::span<const double>(t.data() + begin, end - begin));
+  gaps_.Add(t.subspan(begin, end - begin));
   if (rows_ == 0) first_time_s_ = block_begin_s_ = t[begin];
   for (std::size_t i = begin; i < end; ++i) {
     if (rows_ + (i - begin) == 0) continue;
@@ -100,12 +102,15 @@ void NoiseStream::AddSteps(const std::vector<double>& t,
   last_time_s_ = t[end - 1];
 }
 
-void NoiseStream::Add(const Recording& rows, std::size_t begin, std::size_t end) {
+void NoiseStream::Add(const RecordingView& rows, std::size_t begin, std::size_t end) {
   if (end <= begin) return;
   if (rows_ == 0) {
     source_ = rows.source;
     has_gyro_ = rows.gyro_radps.size() == rows.size();
   }
+  // The first read of these rows: a view of the caller's memory may hold
+  // what no log reader gives, which the sums would carry into every figure.
+  RefuseNotFinite(rows, begin, end);
   AddSteps(rows.time_s, begin, end);
   std::exception_ptr gyro_error;
   std::thread gyro_thread;
@@ -215,7 +220,7 @@ NoiseResult NoiseStream::Finish(double accel_mps2_per_unit,
   return r;
 }
 
-NoiseResult AnalyseNoise(const Recording& recording,
+NoiseResult AnalyseNoise(const RecordingView& recording,
                          const NoiseSegment& segment,
                          double accel_mps2_per_unit,
                          const NoiseOptions& options) {

@@ -2,6 +2,7 @@
 // as the rows arrive, and the judgement (CheckUnits).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -10,6 +11,7 @@
 #include "mpcal/calibrate.h"
 #include "mpcal/error.h"
 #include "mpcal/gravity.h"
+#include "mpcal/not_finite.h"
 #include "mpcal/plausible.h"
 
 namespace mpcal {
@@ -63,13 +65,27 @@ void UnitsEvidence::Add(const RecordingView& part, std::size_t begin, std::size_
   }
   // Every 16th row by its index in the log: a hand-held session is mostly
   // at rest, and during turns |a| stays near g as well.
+  // A value that is NaN or infinite is refused here, the first read of a
+  // calibration's rows (the rest of the accelerometer's and the time by
+  // static detection's first pass): a view of the caller's memory may hold
+  // what no log reader gives.
   for (std::size_t i = begin; i < end; ++i) {
-    if ((rows + i - begin) % kMagnitudeStride == 0) magnitudes.Add(part.accel[i].norm());
+    if ((rows + i - begin) % kMagnitudeStride != 0) continue;
+    const double magnitude = part.accel[i].norm();
+    if (!std::isfinite(magnitude)) RefuseNotFinite(part, RowColumn::kAccel, begin, i + 1);
+    magnitudes.Add(magnitude);
   }
   if (has_gyro) {
+    // (|x| <= max is false for NaN and infinities; tested without a branch
+    // per row, so that the loop vectorises.)
+    constexpr double kMax = std::numeric_limits<double>::max();
+    bool finite = true;
     for (std::size_t i = begin; i < end; ++i) {
-      largest_gyro = std::max(largest_gyro, part.gyro_radps[i].cwiseAbs().maxCoeff());
+      const Eigen::Array3d w = part.gyro_radps[i].array().abs();
+      finite &= (w <= kMax).all();
+      largest_gyro = std::max(largest_gyro, w.maxCoeff());
     }
+    if (!finite) RefuseNotFinite(part, RowColumn::kGyro, begin, end);
   }
   rows += end - begin;
 }

@@ -15,6 +15,7 @@
 #include "findings.h"
 #include "mpcal/error.h"
 #include "mpcal/log_reader.h"
+#include "mpcal/not_finite.h"
 #include "mpcal/simulate.h"
 #include "test_util.h"
 
@@ -344,8 +345,27 @@ TEST(DetectStatic, RejectsTimeThatGoesBackAndNonFiniteReadings) {
   try {
     DetectStatic(nan, {});
     FAIL() << "no throw";
-  } catch (const Error& e) {
-    EXPECT_THAT(e.what(), HasSubstr("sample 700"));
+  } catch (const NotFiniteError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("sample 700 is not finite: its accelerometer"));
+    EXPECT_EQ(e.column(), RowColumn::kAccel);
+    EXPECT_EQ(e.row(), 700u);
+  }
+}
+
+TEST(DetectStatic, RefusesANonFiniteTimeInAViewOfTheCallersMemory) {
+  // Rows no log reader checked, read in place (as the Python module hands
+  // them over): the first pass refuses the infinite time, naming its row.
+  const Made m = Maker{}.Make(CubeFaces(3.0));
+  std::vector<double> t = m.recording.time_s;
+  t[2000] = std::numeric_limits<double>::infinity();
+  RecordingView view = m.recording;
+  view.time_s = t;
+  try {
+    DetectStatic(view, {});
+    FAIL() << "no throw";
+  } catch (const NotFiniteError& e) {
+    EXPECT_EQ(e.column(), RowColumn::kTime);
+    EXPECT_EQ(e.row(), 2000u);
   }
 }
 

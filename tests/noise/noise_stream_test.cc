@@ -3,6 +3,7 @@
 // period and the gaps.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 
 #include "mpcal/error.h"
 #include "mpcal/noise.h"
+#include "mpcal/not_finite.h"
 #include "mpcal/simulate.h"
 #include "mpcal/simulate_noise.h"
 #include "simulated_still.h"
@@ -77,6 +79,27 @@ TEST(NoiseStream, PiecesGiveWhatTheHeldRecordGives) {
     ASSERT_TRUE(r.gyro_radps.has_value());
     ExpectSameSensor(*r.gyro_radps, *held.gyro_radps);
   }
+}
+
+TEST(NoiseStream, RefusesANonFiniteRowOfAView) {
+  // Rows no log reader checked, read in place: a NaN would run through the
+  // sums into every figure; it is refused, naming its column and row.
+  const Recording rec = StillRecord(2.0, 100.0, 5);
+  std::vector<Eigen::Vector3d> gyro = rec.gyro_radps;
+  gyro[9000].y() = std::numeric_limits<double>::quiet_NaN();
+  RecordingView view = rec;
+  view.gyro_radps = gyro;
+  const NoiseSegment all{NoiseSegmentKind::kWholeRecord, 0, rec.size(), 1};
+  try {
+    AnalyseNoise(view, all, 1.0, {});
+    FAIL() << "no throw";
+  } catch (const NotFiniteError& e) {
+    EXPECT_EQ(e.column(), RowColumn::kGyro);
+    EXPECT_EQ(e.row(), 9000u);
+  }
+  // The rows before it are analysed.
+  const NoiseSegment before{NoiseSegmentKind::kLongestStill, 0, 9000, 1};
+  EXPECT_EQ(AnalyseNoise(view, before, 1.0, {}).samples, 9000u);
 }
 
 TEST(NoiseStream, UnitsScaleTheAccelerometerOnly) {

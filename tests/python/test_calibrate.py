@@ -223,6 +223,26 @@ def test_detect_equals_the_commands_json(recording, tmp_path):
     assert d.coverage.verdict == cli["coverage"]["verdict"] == "usable with warnings"
 
 
+def test_detect_reads_the_callers_arrays_in_place(recording, tmp_path):
+    # Copies of the reader's rows (arrays of the caller's: read where they
+    # are, not the Recording's), and the same one byte off alignment (copied
+    # by the module): the command's positions, the arrays unwritten.
+    run_mpcal("detect", XSENS_ACC, "--units", "counts", "--gravity", XSENS_GRAVITY_MPS2,
+              "--json", "detect.json", cwd=tmp_path)
+    cli = json.loads((tmp_path / "detect.json").read_text())
+    for make in (np.array, misaligned):
+        t, accel = make(recording.t), make(recording.accel)
+        d = mpcal.detect(t, accel, units="counts", gravity=XSENS_GRAVITY_MPS2)
+        assert [(i.begin, i.end) for i in d.intervals] == \
+            [(c["begin"], c["end"]) for c in cli["intervals"]]
+        for py, c in zip(d.intervals, cli["intervals"]):
+            np.testing.assert_allclose(py.mean, c["mean"], rtol=RTOL)
+        assert d.detection.quiet_level == pytest.approx(cli["detection"]["quiet_level"],
+                                                        rel=RTOL)
+        np.testing.assert_array_equal(t, recording.t)
+        np.testing.assert_array_equal(accel, recording.accel)
+
+
 def test_detect_says_what_to_change_when_positions_are_too_short():
     # Four positions held 2.5 s, 1 s turns between them: too short for the
     # default minimum of 2 s once the window and the settling are trimmed.

@@ -98,6 +98,18 @@ def test_nan_is_refused_naming_the_argument_and_row():
         mpcal.calibrate(t, accel)
 
 
+def test_nan_is_refused_by_detect_naming_the_argument_and_row():
+    t, accel = still_positions()
+    accel[4321, 2] = np.nan
+    with pytest.raises(mpcal.Error, match=r"^accel: row 4321 is not finite") as caught:
+        mpcal.detect(t, accel)
+    assert caught.value.kind == "input"
+    assert caught.value.figures == {"argument": "accel", "row": 4321, "rows": 1}
+    t[5] = np.nan
+    with pytest.raises(mpcal.Error, match=r"^t: row 5 is not finite"):
+        mpcal.detect(t, accel)
+
+
 def test_arrays_of_different_lengths():
     t, accel = still_positions()
     with pytest.raises(mpcal.Error, match=r"t has 100, accel has"):

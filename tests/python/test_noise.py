@@ -91,3 +91,36 @@ def test_simulate_noise_equals_the_commands_record(still):
     np.testing.assert_allclose(simulated.gyro, rec.gyro, rtol=5.01e-9, atol=0)
     np.testing.assert_allclose(true["accelerometer"]["white_noise_mps2_per_rthz"],
                                truth["accelerometer"]["white_noise_mps2_per_rthz"], rtol=1e-15)
+
+
+def test_arrays_of_the_callers_are_read_in_place_and_give_the_commands(still, result):
+    # Copies of the record's rows (arrays of the caller's: read where they
+    # are, not the Recording's), the gyroscope also in deg/s (converted into
+    # rows of the module's own): the command's terms, the arrays unwritten.
+    rec, cli, _ = still
+    t, accel, gyro = np.array(rec.t), np.array(rec.accel), np.array(rec.gyro)
+    gyro_dps = np.degrees(gyro)
+    kept = [a.copy() for a in (t, accel, gyro, gyro_dps)]
+    for g, units in ((gyro, "rads"), (gyro_dps, "dps")):
+        mine = mpcal.noise(t, accel, g, gyro_units=units)
+        assert mine.samples == cli["samples"]
+        for sensor, key in (("accelerometer", "white_noise_mps2_per_rthz"),
+                            ("gyroscope", "white_noise_radps_per_rthz")):
+            for axis in "xyz":
+                # deg/s to rad/s and back changes the last bit of some readings.
+                assert mine[sensor].axes[axis][key].value == pytest.approx(
+                    cli[sensor]["axes"][axis][key]["value"], rel=1e-9)
+    for a, k in zip((t, accel, gyro, gyro_dps), kept):
+        np.testing.assert_array_equal(a, k)
+
+
+def test_a_nan_is_refused_naming_the_argument_and_row(still):
+    rec, _, _ = still
+    accel, gyro = np.array(rec.accel), np.array(rec.gyro)
+    gyro[20000, 2] = np.nan
+    with pytest.raises(mpcal.Error, match=r"^gyro: row 20000 is not finite") as caught:
+        mpcal.noise(rec.t, accel, gyro)
+    assert caught.value.kind == "input"
+    accel[31, 0] = -np.inf
+    with pytest.raises(mpcal.Error, match=r"^accel: row 31 is not finite"):
+        mpcal.noise(rec.t, accel, whole=True)

@@ -3,6 +3,9 @@
 #include "mpcal/calibrate.h"
 
 #include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
 
 #include <fmt/format.h>
 #include <gmock/gmock.h>
@@ -11,6 +14,7 @@
 
 #include "mpcal/error.h"
 #include "mpcal/log_reader.h"
+#include "mpcal/not_finite.h"
 #include "mpcal/simulate.h"
 #include "simulated_bound.h"
 #include "test_util.h"
@@ -121,6 +125,46 @@ TEST(CalibrateRecording, CatchesAMps2LogReadAsG) {
     ASSERT_EQ(e.advice().settings.size(), 1u);
     EXPECT_EQ(e.advice().settings[0].option, Option::kLogUnits);
     EXPECT_EQ(e.advice().settings[0].value, "mps2");
+  }
+}
+
+TEST(CalibrateRecording, RefusesANonFiniteReadingInAViewOfTheCallersMemory) {
+  // Rows no log reader checked, read in place: a NaN is refused, naming its
+  // column and row, never carried into a number. The gyroscope's and
+  // every 16th accelerometer reading by the units check, which reads them
+  // first; the other accelerometer readings by detection's first pass.
+  SimulateStaticOptions options = Session("mti-g", 7);
+  options.gyro = true;
+  const SimulatedSession s = SimulateStatic(options);
+  const std::size_t n = s.recording.size();
+  auto refusal =
+      [&](const std::vector<Eigen::Vector3d>& accel,
+          const std::vector<Eigen::Vector3d>& gyro) -> std::optional<NotFiniteError> {
+    RecordingView view = s.recording;
+    view.accel = accel;
+    view.gyro_radps = gyro;
+    try {
+      CalibrateRecording(view, {});
+    } catch (const NotFiniteError& e) {
+      return e;
+    }
+    return std::nullopt;
+  };
+  std::vector<Eigen::Vector3d> accel = s.recording.accel;
+  std::vector<Eigen::Vector3d> gyro = s.recording.gyro_radps;
+  gyro[n / 2].z() = std::numeric_limits<double>::quiet_NaN();
+  auto e = refusal(accel, gyro);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->column(), RowColumn::kGyro);
+  EXPECT_EQ(e->row(), n / 2);
+  gyro = s.recording.gyro_radps;
+  for (const std::size_t row : {std::size_t{16} * 1000, std::size_t{16} * 1000 + 5}) {
+    accel = s.recording.accel;
+    accel[row].x() = std::numeric_limits<double>::infinity();
+    e = refusal(accel, gyro);
+    ASSERT_TRUE(e) << row;
+    EXPECT_EQ(e->column(), RowColumn::kAccel);
+    EXPECT_EQ(e->row(), row);
   }
 }
 
