@@ -303,9 +303,8 @@ TermsNotSeen NotSeen(const SensorNoise& s, bool gyro) {
   TermsNotSeen out;
   for (const NoiseTerm t :
        {NoiseTerm::kWhiteNoise, NoiseTerm::kBiasInstability, NoiseTerm::kRandomWalk}) {
-    const std::string axes = AxesWith(s, TermStatus::kNotSeen, [t](const AxisNoise& a) {
-      return a.term(t).status;
-    });
+    const std::string axes = AxesWith(
+        s, TermStatus::kNotSeen, [t](const AxisNoise& a) { return a.term(t).status; });
     if (axes.empty()) continue;
     if (t == NoiseTerm::kWhiteNoise) out.white_missing = true;
     out.terms.push_back(fmt::format("{} on {}", TermLabel(t, gyro), axes));

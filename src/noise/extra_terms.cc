@@ -252,7 +252,8 @@ bool AddBestExtraTerm(const ExtraSearch& s,
   double chosen_stat = std::numeric_limits<double>::infinity();
   int chosen_col = -1;
   for (const int col : {kGaussMarkov, kSinusoid}) {
-    const bool modelled = col == kGaussMarkov ? s.o.model_gauss_markov : s.o.model_sinusoid;
+    const bool modelled =
+        col == kGaussMarkov ? s.o.model_gauss_markov : s.o.model_sinusoid;
     if ((in_model & (1u << col)) || !modelled) continue;
     const Fit f = SearchExtra(s, best, col, in_model);
     if (!Shown(s, f, col, in_model)) continue;
@@ -273,7 +274,10 @@ bool AddBestExtraTerm(const ExtraSearch& s,
 // With both in the model, the first one's τc (or P) was searched without
 // the second and may straddle both humps: each is searched again over the
 // whole grid with the other's held, while the statistic falls.
-void SearchBothAgain(const ExtraSearch& s, TermMask in_model, Fit& best, double& best_stat) {
+void SearchBothAgain(const ExtraSearch& s,
+                     TermMask in_model,
+                     Fit& best,
+                     double& best_stat) {
   for (int cycle = 0; cycle < 3; ++cycle) {
     bool improved = false;
     for (const int col : {kGaussMarkov, kSinusoid}) {

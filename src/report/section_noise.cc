@@ -168,20 +168,20 @@ void AddTermLines(const AxisNoise& a, int style, LinePlotSpec& spec) {
   if (const SinusoidTerm& w = a.sinusoid; w.amplitude) {
     const TauRange read_over{w.tau_lo_s, w.tau_hi_s};
     const double amplitude2 = *w.amplitude * *w.amplitude;
-    spec.series.push_back(TermLine(
-        fmt::format("sinusoid A = {}, P = {} s, read over τ {}",
-                    Significant(*w.amplitude, 3),
-                    Significant(w.period_s, 3),
-                    FormatTauRanges({read_over}, 1)),
-        style,
-        a.curve,
-        read_over,
-        [&](double tau_s) -> std::optional<double> {
-          const double v = SinusoidAvar(amplitude2, w.period_s, tau_s);
-          // Its zeros at whole periods: off the log axis.
-          if (!(v > 0.0)) return std::nullopt;
-          return std::sqrt(v);
-        }));
+    spec.series.push_back(
+        TermLine(fmt::format("sinusoid A = {}, P = {} s, read over τ {}",
+                             Significant(*w.amplitude, 3),
+                             Significant(w.period_s, 3),
+                             FormatTauRanges({read_over}, 1)),
+                 style,
+                 a.curve,
+                 read_over,
+                 [&](double tau_s) -> std::optional<double> {
+                   const double v = SinusoidAvar(amplitude2, w.period_s, tau_s);
+                   // Its zeros at whole periods: off the log axis.
+                   if (!(v > 0.0)) return std::nullopt;
+                   return std::sqrt(v);
+                 }));
   }
 }
 
