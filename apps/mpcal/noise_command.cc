@@ -260,70 +260,85 @@ void PrintFindings(const SensorNoise& s, bool gyro, const NoiseResult& r) {
   }
 }
 
-// One line per sensor: good when every term is measured or masked (a
-// longer record would not show it), look at when a term is not seen yet (a
-// longer record would show it), do not use when not even the white noise
-// shows: the record is not still noise.
-// One verdict line per kind of term; to be split by kind.
-// NOLINTNEXTLINE(readability-function-cognitive-complexity)
-void PrintSensorVerdict(const SensorNoise& s, bool gyro, const NoiseResult& r) {
-  std::vector<std::string> not_seen, disagree;
-  bool white_missing = false;
-  std::optional<double> needed;
+// The axes ("x, y") of `s` on which `status_of` an axis is `status`.
+template <typename StatusOf>
+std::string AxesWith(const SensorNoise& s, TermStatus status, StatusOf status_of) {
+  std::vector<std::string> axes;
+  for (int i = 0; i < 3; ++i) {
+    if (status_of(s.axes[i]) == status) axes.emplace_back(1, static_cast<char>('x' + i));
+  }
+  return fmt::format("{}", fmt::join(axes, ", "));
+}
+
+// Each term the model misses the curve for, with its axes: the IEEE terms,
+// then the Gauss-Markov process and the sinusoid.
+std::vector<std::string> TermsDisagreeing(const SensorNoise& s, bool gyro) {
+  std::vector<std::string> out;
+  const auto add = [&](std::string_view name, const std::string& axes) {
+    if (!axes.empty()) out.push_back(fmt::format("{} on {}", name, axes));
+  };
   for (const NoiseTerm t : kTableTerms) {
-    std::vector<std::string> axes;
-    for (int i = 0; i < 3; ++i) {
-      if (s.axes[i].term(t).status == TermStatus::kDisagrees)
-        axes.emplace_back(1, static_cast<char>('x' + i));
-    }
-    if (!axes.empty())
-      disagree.push_back(
-          fmt::format("{} on {}", TermLabel(t, gyro), fmt::join(axes, ", ")));
+    add(TermLabel(t, gyro), AxesWith(s, TermStatus::kDisagrees, [t](const AxisNoise& a) {
+          return a.term(t).status;
+        }));
   }
-  for (const bool bump : {true, false}) {
-    std::vector<std::string> axes;
-    for (int i = 0; i < 3; ++i) {
-      const AxisNoise& a = s.axes[i];
-      const TermStatus st = bump ? a.gauss_markov.status : a.sinusoid.status;
-      if (st == TermStatus::kDisagrees) axes.emplace_back(1, static_cast<char>('x' + i));
-    }
-    if (!axes.empty())
-      disagree.push_back(fmt::format(
-          "{} on {}", bump ? "Gauss-Markov" : "sinusoid", fmt::join(axes, ", ")));
-  }
+  add("Gauss-Markov", AxesWith(s, TermStatus::kDisagrees, [](const AxisNoise& a) {
+        return a.gauss_markov.status;
+      }));
+  add("sinusoid", AxesWith(s, TermStatus::kDisagrees, [](const AxisNoise& a) {
+        return a.sinusoid.status;
+      }));
+  return out;
+}
+
+// The terms a longer record would show, with their axes; whether the white
+// noise is among them; the longest record any of them needs.
+struct TermsNotSeen {
+  std::vector<std::string> terms;
+  bool white_missing = false;
+  std::optional<double> needed_s;
+};
+
+TermsNotSeen NotSeen(const SensorNoise& s, bool gyro) {
+  TermsNotSeen out;
   for (const NoiseTerm t :
        {NoiseTerm::kWhiteNoise, NoiseTerm::kBiasInstability, NoiseTerm::kRandomWalk}) {
-    std::vector<std::string> axes;
-    for (int i = 0; i < 3; ++i) {
-      if (s.axes[i].term(t).status == TermStatus::kNotSeen) {
-        axes.emplace_back(1, static_cast<char>('x' + i));
-      }
-    }
+    const std::string axes = AxesWith(
+        s, TermStatus::kNotSeen, [t](const AxisNoise& a) { return a.term(t).status; });
     if (axes.empty()) continue;
-    if (t == NoiseTerm::kWhiteNoise) white_missing = true;
-    not_seen.push_back(
-        fmt::format("{} on {}", TermLabel(t, gyro), fmt::join(axes, ", ")));
+    if (t == NoiseTerm::kWhiteNoise) out.white_missing = true;
+    out.terms.push_back(fmt::format("{} on {}", TermLabel(t, gyro), axes));
     if (const auto n = s.record_needed_s[static_cast<int>(t)]) {
-      needed = std::max(needed.value_or(0.0), *n);
+      out.needed_s = std::max(out.needed_s.value_or(0.0), *n);
     }
   }
-  const Verdict verdict = white_missing                          ? Verdict::kDoNotUse
-                          : not_seen.empty() && disagree.empty() ? Verdict::kGood
-                                                                 : Verdict::kLookAt;
+  return out;
+}
+
+// One line per sensor: good when every term is measured or masked (a
+// longer record would not show it), look at when a term is not seen yet (a
+// longer record would show it) or the model misses the curve, do not use
+// when not even the white noise shows: the record is not still noise.
+void PrintSensorVerdict(const SensorNoise& s, bool gyro, const NoiseResult& r) {
+  const std::vector<std::string> disagree = TermsDisagreeing(s, gyro);
+  const TermsNotSeen not_seen = NotSeen(s, gyro);
+  const Verdict verdict = not_seen.white_missing ? Verdict::kDoNotUse
+                          : not_seen.terms.empty() && disagree.empty() ? Verdict::kGood
+                                                                       : Verdict::kLookAt;
   std::string why =
-      not_seen.empty()
+      not_seen.terms.empty()
           ? std::string("every term measured or bounded as far as any record shows it")
           : fmt::format("not measured in this {} record: {}",
                         FormatRecordLength(r.record_s),
-                        fmt::join(not_seen, "; "));
+                        fmt::join(not_seen.terms, "; "));
   if (!disagree.empty()) {
     why = fmt::format("the model misses the curve where these dominate: {}; {}",
                       fmt::join(disagree, "; "),
-                      not_seen.empty() ? "the rest measured or bounded" : why);
+                      not_seen.terms.empty() ? "the rest measured or bounded" : why);
   }
-  if (needed)
+  if (not_seen.needed_s)
     why += fmt::format("; record at least {} to see them (if as large as their bounds)",
-                       FormatRecordLength(*needed));
+                       FormatRecordLength(*not_seen.needed_s));
   fmt::print("{:<14} {} {}\n",
              gyro ? "gyroscope" : "accelerometer",
              PaintVerdict(stdout, verdict, 11),
@@ -623,18 +638,8 @@ void Run(NoiseFlags& f) {
   WriteFiles(f, r);
 }
 
-}  // namespace
-
-// The command's flags, declared in one place as every command's are.
-// NOLINTNEXTLINE(readability-function-size)
-void AddNoiseCommand(CLI::App& root) {
-  auto f = std::make_shared<NoiseFlags>();
-  CLI::App* app = root.add_subcommand(
-      "noise",
-      "Noise of a still IMU: overlapping Allan deviation with confidence intervals, the "
-      "white noise, bias instability and random walk it shows (and how long to record "
-      "for "
-      "those it does not), JSON and Kalibr's imu.yaml");
+// The log read, the files written and what goes into them.
+void AddNoiseFileOptions(CLI::App* app, const std::shared_ptr<NoiseFlags>& f) {
   app->add_option("INPUT", f->input, "Log: CSV or text, '-' for standard input")
       ->required()
       ->check(InputPath);
@@ -673,6 +678,11 @@ void AddNoiseCommand(CLI::App& root) {
                 f->verbose,
                 "Also print how the Allan deviation was made and, per term not measured, "
                 "why and how long a record would show it");
+}
+
+// The Allan deviation's cluster times and intervals, and the terms of the
+// model.
+void AddNoiseModelOptions(CLI::App* app, const std::shared_ptr<NoiseFlags>& f) {
   app->add_option("--points-per-octave",
                   f->noise.allan.points_per_octave,
                   "Cluster times per factor of two")
@@ -697,6 +707,21 @@ void AddNoiseCommand(CLI::App& root) {
          "Leave the sinusoid out of the model: the model check then flags one instead "
          "of measuring it")
       ->group("Noise model");
+}
+
+}  // namespace
+
+// The command and its flags, in the order --help lists them.
+void AddNoiseCommand(CLI::App& root) {
+  auto f = std::make_shared<NoiseFlags>();
+  CLI::App* app = root.add_subcommand(
+      "noise",
+      "Noise of a still IMU: overlapping Allan deviation with confidence intervals, the "
+      "white noise, bias instability and random walk it shows (and how long to record "
+      "for "
+      "those it does not), JSON and Kalibr's imu.yaml");
+  AddNoiseFileOptions(app, f);
+  AddNoiseModelOptions(app, f);
   AddLogOptions(*app,
                 f->log,
                 {"raw ADC; needs --calib to scale them",

@@ -136,27 +136,41 @@ AllanSums::AllanSums(const AllanOptions& options) : options_(options) {
 }
 
 // Distinct values (up to 3) and the smallest change of each axis: a stuck,
-// toggling or coarsely quantised axis is told from noise by these.
+// toggling or coarsely quantised axis is told from noise by these. Axis by
+// axis, in registers: once three values are seen only the smallest change
+// is left to follow.
 void AllanSums::TrackValues(const Eigen::Vector3d* samples, std::size_t count) {
-  for (std::size_t i = 0; i < count; ++i) {
+  if (count == 0) return;
+  std::size_t from = 0;
+  if (samples_ == 0) {
     for (int j = 0; j < 3; ++j) {
-      const double v = samples[i][j];
-      if (samples_ + i == 0) {
-        distinct_[j] = 1;
-        values_[j][0] = v;
-      } else {
-        const double change = std::abs(v - previous_[j]);
-        if (change > 0.0 && (resolution_[j] == 0.0 || change < resolution_[j])) {
-          resolution_[j] = change;
-        }
-        if (distinct_[j] < 3 && v != values_[j][0] &&
-            (distinct_[j] < 2 || v != values_[j][1])) {
-          if (distinct_[j] < 2) values_[j][1] = v;
-          ++distinct_[j];
-        }
-      }
-      previous_[j] = v;
+      distinct_[j] = 1;
+      values_[j][0] = previous_[j] = samples[0][j];
     }
+    from = 1;
+  }
+  for (int j = 0; j < 3; ++j) {
+    double previous = previous_[j];
+    double resolution = resolution_[j];  // 0: no change yet
+    std::size_t i = from;
+    for (; i < count && distinct_[j] < 3; ++i) {
+      const double v = samples[i][j];
+      const double change = std::abs(v - previous);
+      if (change > 0.0 && (resolution == 0.0 || change < resolution)) resolution = change;
+      if (v != values_[j][0] && (distinct_[j] < 2 || v != values_[j][1])) {
+        if (distinct_[j] < 2) values_[j][1] = v;
+        ++distinct_[j];
+      }
+      previous = v;
+    }
+    for (; i < count; ++i) {
+      const double v = samples[i][j];
+      const double change = std::abs(v - previous);
+      if (change > 0.0 && (resolution == 0.0 || change < resolution)) resolution = change;
+      previous = v;
+    }
+    previous_[j] = previous;
+    resolution_[j] = resolution;
   }
 }
 
@@ -178,17 +192,28 @@ AllanSums::AxisValues AllanSums::Values(int axis) const {
 void AllanSums::Add(const Eigen::Vector3d* samples, std::size_t count) {
   TrackValues(samples, count);
   if (count > 0 && samples_ == 0) first_ = samples[0];
+  // The running sums and the count in locals, the block's sums written in
+  // place: stores into recent_ would otherwise make the compiler reload
+  // them for every sample.
+  const Eigen::Vector3d first = first_;
+  std::array<long double, 3> run = run_;
   for (std::size_t done = 0; done < count;) {
     const std::size_t block = std::min(kAddBlock, count - done);
-    for (std::size_t i = done; i < done + block; ++i) {
+    const std::size_t at = recent_.size();
+    recent_.resize(at + 3 * block);
+    double* const sums = recent_.data() + at;
+    std::size_t n = samples_;
+    for (std::size_t i = 0; i < block; ++i) {
+      const Eigen::Vector3d& x = samples[done + i];
+      double* const theta = sums + 3 * i;
       for (int j = 0; j < 3; ++j) {
-        run_[j] += samples[i][j] - first_[j];
-        recent_.push_back(static_cast<double>(run_[j]));
+        run[j] += x[j] - first[j];
+        theta[j] = static_cast<double>(run[j]);
       }
-      if (++samples_ % kFarStride == 0) {
-        far_.insert(far_.end(), recent_.end() - 3, recent_.end());
-      }
+      if (++n % kFarStride == 0) far_.insert(far_.end(), theta, theta + 3);
     }
+    samples_ = n;
+    run_ = run;
     done += block;
     SumNear();
   }

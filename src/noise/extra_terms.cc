@@ -196,10 +196,108 @@ TauRange ExtraRegion(const std::vector<AllanPoint>& curve, const Model& m, int c
   return {curve[a].tau_s, curve[b].tau_s};
 }
 
+// What the extra terms are searched over and judged by: the curve, the
+// terms allowed a negative coefficient, where a peak may lie, and the
+// criterion's penalty and the interval's z.
+struct ExtraSearch {
+  std::vector<AllanPoint>& curve;
+  TermMask signed_terms;
+  double first_tau_s;
+  double phase_points;
+  const NoiseOptions& o;
+  double inflation;  // cluster times per independent point
+  double penalty;    // the criterion's 2 ln n_eff, in independent points
+  double z;          // the interval's half-width in standard deviations
+};
+
+// The extra term `col` searched into `from`, with the terms `in_model`
+// beside it: its peak an octave and a half beyond the first cluster time
+// for a bump, from the second for a sinusoid, up to four octaves before the
+// last.
+Fit SearchExtra(const ExtraSearch& s, const Fit& from, int col, TermMask in_model) {
+  const double peak_lo =
+      col == kGaussMarkov ? s.first_tau_s * std::exp2(1.5) : s.first_tau_s * 1.1;
+  return SearchShape(s.curve,
+                     from,
+                     col,
+                     in_model,
+                     s.signed_terms,
+                     peak_lo,
+                     s.curve.back().tau_s / 16.0,
+                     s.phase_points,
+                     s.o);
+}
+
+// Whether the curve shows the term `col` of `f`: its coefficient above zero
+// by its interval, a large enough share of the variance somewhere, and its
+// τc (P) pinned down by the curve (a bump of τc far beyond the cluster
+// times it rises over is a random walk there, and would take part of one).
+bool Shown(const ExtraSearch& s, const Fit& f, int col, TermMask in_model) {
+  if (!std::isfinite(f.cost) || !(f.m.c[col] > s.z * std::sqrt(f.variance[col])) ||
+      LargestShare(s.curve, f.m, col) < kExtraShare)
+    return false;
+  const TauRange shape =
+      ShapeInterval(s.curve, f, col, in_model | (1u << col), s.signed_terms, s.o);
+  return shape.hi_s <= kExtraShapeRange * shape.lo_s;
+}
+
+// One round: of the extra terms not yet in the model, the one the curve
+// shows that lowers Pearson's statistic most, when it lowers it by more than
+// the criterion's penalty, added to `best`. False when none is.
+bool AddBestExtraTerm(const ExtraSearch& s,
+                      Fit& best,
+                      double& best_stat,
+                      TermMask& in_model) {
+  Fit chosen;
+  double chosen_stat = std::numeric_limits<double>::infinity();
+  int chosen_col = -1;
+  for (const int col : {kGaussMarkov, kSinusoid}) {
+    const bool modelled =
+        col == kGaussMarkov ? s.o.model_gauss_markov : s.o.model_sinusoid;
+    if ((in_model & (1u << col)) || !modelled) continue;
+    const Fit f = SearchExtra(s, best, col, in_model);
+    if (!Shown(s, f, col, in_model)) continue;
+    const double stat = Pearson(s.curve, f.m, s.phase_points, s.o.allan.confidence);
+    if ((best_stat - stat) / s.inflation > s.penalty && stat < chosen_stat) {
+      chosen = f;
+      chosen_stat = stat;
+      chosen_col = col;
+    }
+  }
+  if (chosen_col < 0) return false;
+  best = chosen;
+  best_stat = chosen_stat;
+  in_model |= 1u << chosen_col;
+  return true;
+}
+
+// With both in the model, the first one's τc (or P) was searched without
+// the second and may straddle both humps: each is searched again over the
+// whole grid with the other's held, while the statistic falls.
+void SearchBothAgain(const ExtraSearch& s,
+                     TermMask in_model,
+                     Fit& best,
+                     double& best_stat) {
+  for (int cycle = 0; cycle < 3; ++cycle) {
+    bool improved = false;
+    for (const int col : {kGaussMarkov, kSinusoid}) {
+      const Fit f = SearchExtra(s, best, col, in_model & ~(1u << col));
+      if (!std::isfinite(f.cost) || !(f.m.c[kGaussMarkov] > 0.0) ||
+          !(f.m.c[kSinusoid] > 0.0))
+        continue;
+      const double stat = Pearson(s.curve, f.m, s.phase_points, s.o.allan.confidence);
+      if (stat < best_stat * (1.0 - 1e-9)) {
+        best = f;
+        best_stat = stat;
+        improved = true;
+      }
+    }
+    if (!improved) break;
+  }
+}
+
 }  // namespace
 
-// Each candidate term's admission tests in sequence; to be split into them.
-// NOLINTNEXTLINE(readability-function-cognitive-complexity,readability-function-size)
 Fit AddExtraTerms(std::vector<AllanPoint>& curve,
                   const Fit& base,
                   TermMask signed_terms,
@@ -208,83 +306,22 @@ Fit AddExtraTerms(std::vector<AllanPoint>& curve,
                   const NoiseOptions& o) {
   const double inflation = o.allan.points_per_octave / o.independent_points_per_octave;
   const double n_eff = static_cast<double>(curve.size()) / inflation;
-  const double penalty = 2.0 * std::log(std::max(n_eff, std::numbers::e));
-  const double z = std::sqrt(ChiSquareQuantile(o.allan.confidence, 1.0));
-  const double last_tau_s = curve.back().tau_s;
+  const ExtraSearch s{curve,
+                      signed_terms,
+                      first_tau_s,
+                      phase_points,
+                      o,
+                      inflation,
+                      2.0 * std::log(std::max(n_eff, std::numbers::e)),
+                      std::sqrt(ChiSquareQuantile(o.allan.confidence, 1.0))};
   Fit best = base;
   double best_stat = Pearson(curve, best.m, phase_points, o.allan.confidence);
   TermMask in_model = IeeeTerms(base.m);
   for (int round = 0; round < 2; ++round) {
-    Fit chosen;
-    double chosen_stat = std::numeric_limits<double>::infinity();
-    int chosen_col = -1;
-    for (const int col : {kGaussMarkov, kSinusoid}) {
-      if (in_model & (1u << col)) continue;
-      if (col == kGaussMarkov && !o.model_gauss_markov) continue;
-      if (col == kSinusoid && !o.model_sinusoid) continue;
-      const double peak_lo =
-          col == kGaussMarkov ? first_tau_s * std::exp2(1.5) : first_tau_s * 1.1;
-      const Fit f = SearchShape(curve,
-                                best,
-                                col,
-                                in_model,
-                                signed_terms,
-                                peak_lo,
-                                last_tau_s / 16.0,
-                                phase_points,
-                                o);
-      if (!std::isfinite(f.cost) || !(f.m.c[col] > z * std::sqrt(f.variance[col])) ||
-          LargestShare(curve, f.m, col) < kExtraShare)
-        continue;
-      // Its τc (P) pinned down by the curve: a bump of τc far beyond the
-      // cluster times it rises over is a random walk there, and would take
-      // part of one.
-      const TauRange shape =
-          ShapeInterval(curve, f, col, in_model | (1u << col), signed_terms, o);
-      if (!(shape.hi_s <= kExtraShapeRange * shape.lo_s)) continue;
-      const double stat = Pearson(curve, f.m, phase_points, o.allan.confidence);
-      if ((best_stat - stat) / inflation > penalty && stat < chosen_stat) {
-        chosen = f;
-        chosen_stat = stat;
-        chosen_col = col;
-      }
-    }
-    if (chosen_col < 0) break;
-    best = chosen;
-    best_stat = chosen_stat;
-    in_model |= 1u << chosen_col;
+    if (!AddBestExtraTerm(s, best, best_stat, in_model)) break;
   }
-  // With both in the model, the first one's τc (or P) was searched without
-  // the second and may straddle both humps: each is searched again over the
-  // whole grid with the other's held, while the statistic falls.
-  if ((in_model & (1u << kGaussMarkov)) && (in_model & (1u << kSinusoid))) {
-    for (int cycle = 0; cycle < 3; ++cycle) {
-      bool improved = false;
-      for (const int col : {kGaussMarkov, kSinusoid}) {
-        const double peak_lo =
-            col == kGaussMarkov ? first_tau_s * std::exp2(1.5) : first_tau_s * 1.1;
-        const Fit f = SearchShape(curve,
-                                  best,
-                                  col,
-                                  in_model & ~(1u << col),
-                                  signed_terms,
-                                  peak_lo,
-                                  last_tau_s / 16.0,
-                                  phase_points,
-                                  o);
-        if (!std::isfinite(f.cost) || !(f.m.c[kGaussMarkov] > 0.0) ||
-            !(f.m.c[kSinusoid] > 0.0))
-          continue;
-        const double stat = Pearson(curve, f.m, phase_points, o.allan.confidence);
-        if (stat < best_stat * (1.0 - 1e-9)) {
-          best = f;
-          best_stat = stat;
-          improved = true;
-        }
-      }
-      if (!improved) break;
-    }
-  }
+  if ((in_model & (1u << kGaussMarkov)) && (in_model & (1u << kSinusoid)))
+    SearchBothAgain(s, in_model, best, best_stat);
   SetIntervals(curve, &best.m, phase_points, o.allan.confidence);
   return best;
 }

@@ -121,9 +121,15 @@ void SetIntervals(std::vector<AllanPoint>& curve,
   const double lo_p = 0.5 * (1.0 - confidence);
   for (AllanPoint& p : curve) {
     p.dominant = m ? Dominant(*m, p.tau_s) : NoiseTerm::kWhiteNoise;
-    p.edf =
+    const double edf =
         std::min(OverlappingAllanEdf(phase_points, static_cast<double>(p.m), p.dominant),
                  static_cast<double>(p.terms));
+    // The interval follows from the EDF alone (the confidence is the same in
+    // every call on one curve): a point whose EDF the new model leaves as it
+    // was keeps its interval: the fit sets the intervals at every step, and
+    // the χ² quantiles are what that costs.
+    if (edf == p.edf && p.adev_hi > 0.0) continue;
+    p.edf = edf;
     p.adev_lo = std::sqrt(p.avar * p.edf / ChiSquareQuantile(1.0 - lo_p, p.edf));
     p.adev_hi = std::sqrt(p.avar * p.edf / ChiSquareQuantile(lo_p, p.edf));
   }

@@ -97,7 +97,8 @@ Fit FitNonNegative(const std::vector<AllanPoint>& curve,
 NoiseTerm Dominant(const Model& m, double tau_s);
 
 /// EDF and interval of every point for the dominant term of `m` (white noise
-/// before any fit).
+/// before any fit); on one curve, always with the same `confidence` (a point
+/// whose EDF is unchanged keeps the interval it has).
 void SetIntervals(std::vector<AllanPoint>& curve,
                   const Model* m,
                   double phase_points,

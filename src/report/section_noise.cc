@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -110,8 +111,106 @@ std::string TermsTable(const SensorNoise& s, bool gyro) {
   return t.Finish();
 }
 
-// One line series per term; to be split by term.
-// NOLINTNEXTLINE(readability-function-size)
+// A term's own line, dashed, over the cluster times [lo_s, hi_s] it was
+// read from, not beyond: where the curve supports it. `adev` gives its σ(τ),
+// or nothing where it has no point.
+template <typename Adev>
+Series TermLine(std::string label,
+                int style,
+                const std::vector<AllanPoint>& curve,
+                TauRange read_over,
+                Adev adev) {
+  Series line{std::move(label), {}, {}, StandardStyle(style), true, false};
+  line.style.dash = "5,4";
+  for (const AllanPoint& p : curve) {
+    if (p.tau_s < read_over.lo_s || p.tau_s > read_over.hi_s) continue;
+    const std::optional<double> y = adev(p.tau_s);
+    if (!y) continue;
+    line.x.push_back(p.tau_s);
+    line.y.push_back(*y);
+  }
+  return line;
+}
+
+// Each measured term's line (slope −1, −½, 0, +½, +1), then the Gauss-Markov
+// bump's and the sinusoid's, each in the next style from `style` on.
+void AddTermLines(const AxisNoise& a, int style, LinePlotSpec& spec) {
+  for (int i = 0; i < kNoiseTermCount; ++i) {
+    const TermEstimate& e = a.terms[i];
+    if (!e.value) continue;
+    const auto term = static_cast<NoiseTerm>(i);
+    const TauRange read_over{e.tau_lo_s, e.tau_hi_s};
+    spec.series.push_back(TermLine(
+        fmt::format("{} = {}, read over τ {}",
+                    TermName(term),
+                    Significant(*e.value, 3),
+                    FormatTauRanges({read_over}, 1)),
+        style++,
+        a.curve,
+        read_over,
+        [&](double tau_s) { return std::optional(TermAdev(term, *e.value, tau_s)); }));
+  }
+  if (const GaussMarkovTerm& g = a.gauss_markov; g.sigma) {
+    const TauRange read_over{g.tau_lo_s, g.tau_hi_s};
+    const double sigma2 = *g.sigma * *g.sigma;
+    spec.series.push_back(TermLine(
+        fmt::format("Gauss-Markov σ = {}, τc = {} s, read over τ {}",
+                    Significant(*g.sigma, 3),
+                    Significant(g.tau_c_s, 3),
+                    FormatTauRanges({read_over}, 1)),
+        style++,
+        a.curve,
+        read_over,
+        [&](double tau_s) {
+          return std::optional(std::sqrt(GaussMarkovAvar(sigma2, g.tau_c_s, tau_s)));
+        }));
+  }
+  if (const SinusoidTerm& w = a.sinusoid; w.amplitude) {
+    const TauRange read_over{w.tau_lo_s, w.tau_hi_s};
+    const double amplitude2 = *w.amplitude * *w.amplitude;
+    spec.series.push_back(
+        TermLine(fmt::format("sinusoid A = {}, P = {} s, read over τ {}",
+                             Significant(*w.amplitude, 3),
+                             Significant(w.period_s, 3),
+                             FormatTauRanges({read_over}, 1)),
+                 style,
+                 a.curve,
+                 read_over,
+                 [&](double tau_s) -> std::optional<double> {
+                   const double v = SinusoidAvar(amplitude2, w.period_s, tau_s);
+                   // Its zeros at whole periods: off the log axis.
+                   if (!(v > 0.0)) return std::nullopt;
+                   return std::sqrt(v);
+                 }));
+  }
+}
+
+// Where the fitted model lies outside the curve's interval (ModelCheck),
+// shaded: no term is read there.
+void AddMisfitBands(const ModelCheck& check, LinePlotSpec& spec) {
+  for (const TauRange& r : check.disagree) {
+    spec.bands.push_back({r.lo_s, r.hi_s, "", "band-misfit"});
+  }
+  if (check.disagree.empty()) return;
+  spec.extra_legend.push_back({"the model misses the curve (outside its interval)",
+                               {},
+                               true,
+                               "band-misfit",
+                               false});
+}
+
+// The sum of the fitted terms over the cluster times fitted (from
+// ModelCheck::from_tau_s).
+Series FittedSum(const AxisNoise& a) {
+  Series sum{"sum of the fitted terms", {}, {}, StandardStyle(1), true, false};
+  for (const AllanPoint& p : a.curve) {
+    if (p.tau_s < a.check.from_tau_s) continue;
+    sum.x.push_back(p.tau_s);
+    sum.y.push_back(std::sqrt(a.FittedAvar(p.tau_s)));
+  }
+  return sum;
+}
+
 std::string AllanPlot(const AxisNoise& a, bool gyro, int axis) {
   LinePlotSpec spec;
   spec.log_x = true;
@@ -134,92 +233,9 @@ std::string AllanPlot(const AxisNoise& a, bool gyro, int axis) {
   spec.fills.push_back(band);
   spec.series.push_back(adev);
   if (a.curve.empty()) return LinePlot(spec);
-  // Where the fitted model lies outside the curve's interval (ModelCheck),
-  // shaded: no term is read there.
-  for (const TauRange& r : a.check.disagree) {
-    spec.bands.push_back({r.lo_s, r.hi_s, "", "band-misfit"});
-  }
-  if (!a.check.disagree.empty()) {
-    spec.extra_legend.push_back({"the model misses the curve (outside its interval)",
-                                 {},
-                                 true,
-                                 "band-misfit",
-                                 false});
-  }
-  // Each measured term's own line (slope −1, −½, 0, +½, +1) drawn over the
-  // cluster times it was read from, not beyond: where the curve supports it.
-  Series sum{"sum of the fitted terms", {}, {}, StandardStyle(1), true, false};
-  int style = 2;
-  for (int i = 0; i < kNoiseTermCount; ++i) {
-    const TermEstimate& e = a.terms[i];
-    if (!e.value) continue;
-    Series line{fmt::format("{} = {}, read over τ {}",
-                            TermName(static_cast<NoiseTerm>(i)),
-                            Significant(*e.value, 3),
-                            FormatTauRanges({TauRange{e.tau_lo_s, e.tau_hi_s}}, 1)),
-                {},
-                {},
-                StandardStyle(style++),
-                true,
-                false};
-    line.style.dash = "5,4";
-    for (const AllanPoint& p : a.curve) {
-      if (p.tau_s < e.tau_lo_s || p.tau_s > e.tau_hi_s) continue;
-      line.x.push_back(p.tau_s);
-      line.y.push_back(TermAdev(static_cast<NoiseTerm>(i), *e.value, p.tau_s));
-    }
-    spec.series.push_back(line);
-  }
-  // The Gauss-Markov bump and the sinusoid, each as its own curve over the
-  // cluster times it was read from.
-  if (a.gauss_markov.sigma) {
-    const GaussMarkovTerm& g = a.gauss_markov;
-    Series line{fmt::format("Gauss-Markov σ = {}, τc = {} s, read over τ {}",
-                            Significant(*g.sigma, 3),
-                            Significant(g.tau_c_s, 3),
-                            FormatTauRanges({TauRange{g.tau_lo_s, g.tau_hi_s}}, 1)),
-                {},
-                {},
-                StandardStyle(style++),
-                true,
-                false};
-    line.style.dash = "5,4";
-    for (const AllanPoint& p : a.curve) {
-      if (p.tau_s < g.tau_lo_s || p.tau_s > g.tau_hi_s) continue;
-      line.x.push_back(p.tau_s);
-      line.y.push_back(
-          std::sqrt(GaussMarkovAvar(*g.sigma * *g.sigma, g.tau_c_s, p.tau_s)));
-    }
-    spec.series.push_back(line);
-  }
-  if (a.sinusoid.amplitude) {
-    const SinusoidTerm& w = a.sinusoid;
-    Series line{fmt::format("sinusoid A = {}, P = {} s, read over τ {}",
-                            Significant(*w.amplitude, 3),
-                            Significant(w.period_s, 3),
-                            FormatTauRanges({TauRange{w.tau_lo_s, w.tau_hi_s}}, 1)),
-                {},
-                {},
-                StandardStyle(style++),
-                true,
-                false};
-    line.style.dash = "5,4";
-    for (const AllanPoint& p : a.curve) {
-      if (p.tau_s < w.tau_lo_s || p.tau_s > w.tau_hi_s) continue;
-      const double v = SinusoidAvar(*w.amplitude * *w.amplitude, w.period_s, p.tau_s);
-      if (!(v > 0.0)) continue;  // its zeros at whole periods: off the log axis
-      line.x.push_back(p.tau_s);
-      line.y.push_back(std::sqrt(v));
-    }
-    spec.series.push_back(line);
-  }
-  // The sum over the cluster times fitted (from ModelCheck::from_tau_s).
-  for (const AllanPoint& p : a.curve) {
-    if (p.tau_s < a.check.from_tau_s) continue;
-    sum.x.push_back(p.tau_s);
-    sum.y.push_back(std::sqrt(a.FittedAvar(p.tau_s)));
-  }
-  spec.series.push_back(sum);
+  AddMisfitBands(a.check, spec);
+  AddTermLines(a, 2, spec);
+  spec.series.push_back(FittedSum(a));
   spec.y_include = Interval{a.curve.front().adev_lo, a.curve.front().adev_hi};
   return LinePlot(spec);
 }
