@@ -4,14 +4,15 @@
 // does so):
 //
 //   npm install @mcap/core@2.2.2 @foxglove/cdr@3.5.0 lz4js@0.2.0
-//   node bag_bench_mcap.mjs CSV OUT.mcap
+//   node bag_bench_mcap.mjs CSV OUT.mcap [--compression lz4|zstd|none] [--no-camera]
 //
 // Each CSV row (t in s, ax ay az in m/s2, gx gy gz in rad/s) becomes one
 // sensor_msgs/msg/Imu on /imu/data (CDR little endian), header stamp and
 // log time 1700000000 s + t; a sensor_msgs/msg/Image on /camera/image_raw
 // every 1/30 s (640x480 mono8, pseudo-random pixels) among them in time
-// order, in lz4 chunks of the writer's default size, with its summary and
-// indexes.
+// order (none with --no-camera), in chunks of the writer's default size
+// (lz4 by default; zstd level 3 by @foxglove/wasm-zstd; none: stored), with
+// its summary and indexes.
 import { createRequire } from "node:module";
 import fs from "node:fs";
 import path from "node:path";
@@ -24,7 +25,21 @@ const lz4js = require("lz4js");
 const EPOCH_NS = 1700000000n * 1000000000n;
 const CAMERA_HZ = 30n;
 const WIDTH = 640, HEIGHT = 480;
-const [csvPath, outPath] = process.argv.slice(2);
+const args = process.argv.slice(2);
+const [csvPath, outPath] = args;
+const flag = (name) => args.indexOf(name);
+const compression = flag("--compression") >= 0 ? args[flag("--compression") + 1] : "lz4";
+const camera = flag("--no-camera") < 0;
+if (!["lz4", "zstd", "none"].includes(compression)) {
+  throw new Error(`unknown compression ${compression} (lz4, zstd or none)`);
+}
+const zstd = require("@foxglove/wasm-zstd");
+await zstd.isLoaded;
+const compressChunk = {
+  lz4: (data) => ({ compression: "lz4", compressedData: lz4js.compress(data) }),
+  zstd: (data) => ({ compression: "zstd", compressedData: zstd.compress(data, 3) }),
+  none: undefined,
+}[compression];
 
 function stamp(w, ns) {
   w.int32(Number(ns / 1000000000n));
@@ -78,10 +93,7 @@ const writable = {
     size += BigInt(buf.length);
   },
 };
-const writer = new McapWriter({
-  writable,
-  compressChunk: (data) => ({ compression: "lz4", compressedData: lz4js.compress(data) }),
-});
+const writer = new McapWriter({ writable, compressChunk });
 await writer.start({ profile: "ros2", library: "bag_bench_mcap.mjs" });
 const schema = async (name) =>
   writer.registerSchema({ name, encoding: "ros2msg", data: new TextEncoder().encode("") });
@@ -90,18 +102,18 @@ const imageSchema = await schema("sensor_msgs/msg/Image");
 const channel = async (topic, schemaId) =>
   writer.registerChannel({ topic, schemaId, messageEncoding: "cdr", metadata: new Map() });
 const imu = await channel("/imu/data", imuSchema);
-const camera = await channel("/camera/image_raw", imageSchema);
+const cameraChannel = camera ? await channel("/camera/image_raw", imageSchema) : 0;
 
 const lines = fs.readFileSync(csvPath, "utf8").trim().split("\n").slice(1);
 let nextFrame = 0n;
 for (let i = 0; i < lines.length; ++i) {
   const v = lines[i].split(",").map(Number);
   const ns = EPOCH_NS + BigInt(Math.round(v[0] * 1e9));
-  for (;;) {
+  while (camera) {
     const frameNs = EPOCH_NS + (nextFrame * 1000000000n) / CAMERA_HZ;
     if (frameNs > ns) break;
     await writer.addMessage({
-      channelId: camera, sequence: Number(nextFrame), logTime: frameNs, publishTime: frameNs,
+      channelId: cameraChannel, sequence: Number(nextFrame), logTime: frameNs, publishTime: frameNs,
       data: cdrImage(Number(nextFrame), frameNs),
     });
     ++nextFrame;

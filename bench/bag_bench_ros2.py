@@ -7,10 +7,12 @@ Each CSV row (t in s, ax ay az in m/s2, gx gy gz in rad/s) becomes one
 sensor_msgs/msg/Imu on /imu/data, header stamp and timestamp 1700000000 s + t;
 a sensor_msgs/msg/Image's bytes (640x480 mono8 of pseudo-random pixels and
 its header's length, 307,264 bytes) on /camera/image_raw every 1/30 s among
-them, in time order, as a recorder inserts two topics.
+them, in time order, as a recorder inserts two topics (none with
+--no-camera).
 
-  python3 bag_bench_ros2.py CSV OUT_DIR    (writes OUT_DIR/metadata.yaml and
-                                            OUT_DIR/<name>_0.db3)
+  python3 bag_bench_ros2.py CSV OUT_DIR [--no-camera]
+                                (writes OUT_DIR/metadata.yaml and
+                                 OUT_DIR/<name>_0.db3)
 """
 import csv
 import os
@@ -27,6 +29,7 @@ CAMERA_HZ = 30
 
 def main():
     csv_path, out = sys.argv[1], sys.argv[2]
+    camera = "--no-camera" not in sys.argv[3:]
     os.makedirs(out)
     # Named for the directory it is moved to once whole (bag_bench.sh writes
     # NAME.tmp and renames it).
@@ -39,7 +42,7 @@ def main():
     with open(csv_path, newline="") as f:
         for row in csv.DictReader(f):
             t_ns = EPOCH_NS + int(round(float(row["t"]) * 1e9))
-            while EPOCH_NS + frame * 10**9 // CAMERA_HZ <= t_ns:
+            while camera and EPOCH_NS + frame * 10**9 // CAMERA_HZ <= t_ns:
                 db.execute("INSERT INTO messages(topic_id, timestamp, data) VALUES (1, ?, ?)",
                            (EPOCH_NS + frame * 10**9 // CAMERA_HZ, frames[frame % len(frames)]))
                 frame += 1

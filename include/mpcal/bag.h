@@ -104,6 +104,13 @@ bool IsBag(const std::string& path);
 ///   that cannot be read (naming the file, the record and its byte offset).
 BagSummary InspectBag(const std::string& path);
 
+/// The topics of a recording as InspectBag lists them, with the message
+/// counts and times its index holds; a ROS 2 bag's SQLite files have none,
+/// and their topics come from the topics table alone (messages, first_ns and
+/// last_ns 0), without InspectBag's pass over every message.
+/// \throws mpcal::Error as InspectBag.
+std::vector<BagTopic> ListBagTopics(const std::string& path);
+
 /// Decodes every sensor_msgs/Imu message on `topic` and hands them to `sink`
 /// in file order. Conditions that do not stop the reading (no index, a file
 /// cut short, a topic with no message) are appended to `warnings`.

@@ -98,6 +98,13 @@ BagSummary InspectBag(const std::string& path) {
   return {};
 }
 
+std::vector<BagTopic> ListBagTopics(const std::string& path) {
+  if (DetectBagFormat(path) == BagFormat::kRos2Sqlite) {
+    return bag::InspectRos2(path, /*count_messages=*/false).topics;
+  }
+  return InspectBag(path).topics;
+}
+
 void ReadImuMessages(const std::string& path,
                      const std::string& topic,
                      const ImuSink& sink,

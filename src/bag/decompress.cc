@@ -24,6 +24,7 @@ namespace {
 // only what its data really unpacks to.
 constexpr std::size_t kStepBytes = 1 << 20;
 constexpr std::size_t kLz4MaxBlockBytes = 4 << 20;
+constexpr std::size_t kZstdFirstRoomBytes = 4 << 20;
 
 // Makes room for at least one more byte than `expected` allows, so a stream
 // that unpacks to more than it claims is caught.
@@ -156,7 +157,14 @@ void Zstd(std::string_view input, std::uint64_t expected, ByteBuffer& out) {
   // A window beyond the chunk's size would only serve a hostile frame.
   ZSTD_DCtx_setParameter(ctx.get(), ZSTD_d_windowLogMax, 30);
   ZSTD_inBuffer in{input.data(), input.size(), 0};
-  out.Resize(0);
+  // zstd unpacks a frame straight into the output, in one pass, only when
+  // the room there holds the whole frame; with less it unpacks into a window
+  // of its own and copies out. A writer closes a chunk once it passes its
+  // size (@mcap/core: 1 MiB), so the first room is the chunk's size and one
+  // byte, up to 4 MiB (more grows a step at a time); it is not zero-filled,
+  // so pages a smaller chunk does not reach cost no memory.
+  out.Resize(static_cast<std::size_t>(
+      std::min<std::uint64_t>(expected + 1, kZstdFirstRoomBytes)));
   std::size_t used = 0;
   for (;;) {
     std::size_t room = 0;

@@ -30,9 +30,12 @@ enum Op : std::uint8_t {
 };
 
 /// A record's header fields (u32 length + "name=value" each), checked once
-/// and then looked up in place by a scan: a header holds three to six fields,
-/// and a message record's header is read for every message, so building a
-/// map of strings for each would cost more than the message's decoding.
+/// and then looked up in place: a header holds three to six fields, and a
+/// message record's header is read for every message, so building a map of
+/// strings for each would cost more than the message's decoding. The pass
+/// that checks the fields also notes where the three a message record is
+/// read by (op, conn, time) are, so looking them up scans nothing again;
+/// any other name is found by a scan.
 class Fields {
  public:
   Fields() = default;
@@ -48,11 +51,22 @@ class Fields {
   std::size_t count(std::string_view name) const { return Find(name) ? 1 : 0; }
 
  private:
+  // Where a noted field's value is in bytes(); an offset, not a view, so
+  // that it survives the copy of owned bytes.
+  struct Noted {
+    std::size_t pos = 0;
+    std::size_t size = 0;
+    bool found = false;
+  };
   std::string_view bytes() const { return owning_ ? std::string_view(owned_) : view_; }
+  /// Checks every field and notes op, conn and time.
+  void Check();
+  const Noted* NotedFor(std::string_view name) const;
 
   std::string owned_;
   std::string_view view_;
   bool owning_ = false;
+  Noted op_, conn_, time_;
 };
 
 /// Parses the header fields of one record into fields that own their bytes.

@@ -44,8 +44,13 @@ class Database {
   explicit Database(const std::string& path) : path_(path) {
     const std::string uri = "file:" + path + "?immutable=1";
     sqlite3* db = nullptr;
-    const int rc = sqlite3_open_v2(
-        uri.c_str(), &db, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr);
+    const int rc =
+        sqlite3_open_v2(uri.c_str(),
+                        &db,
+                        // One thread uses the connection: no mutex around each call,
+                        // which a step per message would otherwise lock and unlock.
+                        SQLITE_OPEN_READONLY | SQLITE_OPEN_URI | SQLITE_OPEN_NOMUTEX,
+                        nullptr);
     db_.reset(db);
     if (rc != SQLITE_OK) Fail("cannot be opened as SQLite");
   }
@@ -112,20 +117,33 @@ void Merge(BagTopic& into, const BagTopic& part) {
   into.messages += part.messages;
 }
 
-void InspectDb3(const std::string& file, BagSummary& summary) {
+// Each topic's messages and first and last timestamps.
+void CountMessages(Database& db, std::vector<Ros2Topic>& topics) {
+  // Counted here over one pass of the table: rosbag2 indexes the messages
+  // by timestamp, not by topic, so SQLite's GROUP BY topic_id would first
+  // sort every row (three times the pass on a million messages).
+  Statement s(db.Prepare("SELECT topic_id, timestamp FROM messages"), sqlite3_finalize);
+  std::map<std::int64_t, BagTopic> counted;
+  while (db.Step(s.get())) {
+    BagTopic& c = counted[sqlite3_column_int64(s.get(), 0)];
+    const std::int64_t t = sqlite3_column_int64(s.get(), 1);
+    c.first_ns = c.messages == 0 ? t : std::min(c.first_ns, t);
+    c.last_ns = c.messages == 0 ? t : std::max(c.last_ns, t);
+    ++c.messages;
+  }
+  for (Ros2Topic& t : topics) {
+    const auto it = counted.find(t.id);
+    if (it == counted.end()) continue;
+    t.topic.messages = it->second.messages;
+    t.topic.first_ns = it->second.first_ns;
+    t.topic.last_ns = it->second.last_ns;
+  }
+}
+
+void InspectDb3(const std::string& file, bool count_messages, BagSummary& summary) {
   Database db(file);
   std::vector<Ros2Topic> topics = Topics(db);
-  Statement s(db.Prepare("SELECT topic_id, COUNT(*), MIN(timestamp), MAX(timestamp) "
-                         "FROM messages GROUP BY topic_id"),
-              sqlite3_finalize);
-  while (db.Step(s.get())) {
-    for (Ros2Topic& t : topics) {
-      if (t.id != sqlite3_column_int64(s.get(), 0)) continue;
-      t.topic.messages = sqlite3_column_int64(s.get(), 1);
-      t.topic.first_ns = sqlite3_column_int64(s.get(), 2);
-      t.topic.last_ns = sqlite3_column_int64(s.get(), 3);
-    }
-  }
+  if (count_messages) CountMessages(db, topics);
   for (const Ros2Topic& t : topics) {
     auto it = std::find_if(summary.topics.begin(),
                            summary.topics.end(),
@@ -196,12 +214,12 @@ std::vector<std::string> Ros2StorageFiles(const std::string& path) {
   return {files.begin(), files.end()};
 }
 
-BagSummary InspectRos2(const std::string& path) {
+BagSummary InspectRos2(const std::string& path, bool count_messages) {
   BagSummary summary;
   summary.format = BagFormat::kRos2Sqlite;
   for (const std::string& file : Ros2StorageFiles(path)) {
     if (!IsMcap(file)) {
-      InspectDb3(file, summary);
+      InspectDb3(file, count_messages, summary);
       continue;
     }
     const BagSummary part = InspectMcap(file);

@@ -14,7 +14,10 @@ namespace mpcal::bag {
 /// \throws mpcal::Error for a directory without *.db3 or *.mcap files.
 std::vector<std::string> Ros2StorageFiles(const std::string& path);
 
-BagSummary InspectRos2(const std::string& path);
+/// With `count_messages` false, a SQLite file's topics are listed from its
+/// topics table alone (messages, first_ns and last_ns left 0): counting
+/// them is a pass over every message.
+BagSummary InspectRos2(const std::string& path, bool count_messages = true);
 void ReadRos2Imu(const std::string& path,
                  const std::string& topic,
                  const ImuSink& sink,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <span>
 #include <string>
 #include <utility>
@@ -24,16 +25,25 @@ bool IsImuType(const std::string& type) {
   return type == "sensor_msgs/Imu" || type == "sensor_msgs/msg/Imu";
 }
 
-std::string ChooseTopic(const std::string& path, const LogOptions& options) {
-  if (!options.topic.empty()) return options.topic;
-  const BagSummary summary = InspectBag(path);
+// The topic to read, and how many messages the recording's index says it
+// holds (0 when unknown: a topic given by name is read without looking, and
+// a ROS 2 bag's SQLite files count them only by a pass over every message).
+struct ChosenTopic {
+  std::string name;
+  std::int64_t messages = 0;
+};
+
+ChosenTopic ChooseTopic(const std::string& path, const LogOptions& options) {
+  if (!options.topic.empty()) return {options.topic, 0};
+  const std::vector<BagTopic> topics = ListBagTopics(path);
   std::vector<std::string> imu;
   std::string all;
-  for (const BagTopic& t : summary.topics) {
-    if (IsImuType(t.type)) imu.push_back(t.name);
+  std::int64_t messages = 0;
+  for (const BagTopic& t : topics) {
+    if (IsImuType(t.type)) imu.push_back(t.name), messages = t.messages;
     all += (all.empty() ? "" : ", ") + t.name + " (" + t.type + ")";
   }
-  if (imu.size() == 1) return imu.front();
+  if (imu.size() == 1) return {imu.front(), messages};
   if (imu.empty()) {
     throw Error(ErrorKind::kInput,
                 path + ": no sensor_msgs/Imu topic; the recording holds " +
@@ -93,14 +103,40 @@ struct HeldRows {
   std::int64_t first_ns = 0;  // the first message's time, the rows' origin
 };
 
+// The rows to make room for at once: the messages the index counts, but
+// never more than the recording's bytes can hold (a sensor_msgs/Imu is 37
+// doubles, 296 bytes and more, in any of its serialisations), so that a
+// damaged count cannot claim memory. Room made at once rather than by
+// doubling spares the copies and the pages each doubling touches and frees,
+// which on a million messages cost as much as their decoding.
+std::size_t RowsToReserve(const std::string& path, std::int64_t messages) {
+  constexpr std::uintmax_t kSmallestImuBytes = 296;
+  if (messages <= 0) return 0;
+  std::error_code ec;
+  std::uintmax_t bytes = 0;
+  if (std::filesystem::is_directory(path, ec)) {
+    for (const auto& entry : std::filesystem::directory_iterator(path, ec)) {
+      if (entry.is_regular_file(ec)) bytes += entry.file_size(ec);
+    }
+  } else {
+    bytes = std::filesystem::file_size(path, ec);
+  }
+  if (ec) return 0;
+  return static_cast<std::size_t>(std::min<std::uintmax_t>(
+      static_cast<std::uintmax_t>(messages), bytes / kSmallestImuBytes));
+}
+
 // A gyroscope's own stream (`gyro_only`, gyro_log.h): its rates take the
 // accelerometer's place, as a gyroscope log's columns do.
 HeldRows ReadMessages(const std::string& path,
                       const std::string& topic,
                       RecordingTime time,
                       bool gyro_only,
+                      std::size_t expected_rows,
                       std::vector<std::string>& warnings) {
   HeldRows held;
+  held.rows.time.reserve(expected_rows);
+  held.rows.accel.reserve(expected_rows);
   std::int64_t first_ns = 0;
   bool first = true;
   ReadImuMessages(
@@ -117,6 +153,7 @@ HeldRows ReadMessages(const std::string& path,
             first_ns = t_ns, first = false;
             held.first_ns = first_ns;
             held.gyro = !gyro_only && m.has_angular_velocity;
+            if (held.gyro) held.rows.gyro.reserve(expected_rows);
           }
           std::int64_t offset_ns = 0;
           if (__builtin_sub_overflow(t_ns, first_ns, &offset_ns)) {
@@ -167,13 +204,18 @@ LogStreamSummary ReadBagRows(const std::string& path,
                              Recording* rec,
                              std::function<void(const Recording&)> consume) {
   RefuseTextOptions(path, options);
-  const std::string topic = ChooseTopic(path, options);
+  const ChosenTopic chosen = ChooseTopic(path, options);
+  const std::string& topic = chosen.name;
   rec->units = AccelUnits::kMps2;
   rec->gyro_units = GyroUnits::kRadps;
   rec->source = path;
   std::vector<std::string> warnings;
-  HeldRows held =
-      ReadMessages(path, topic, options.recording_time, options.gyroscope_only, warnings);
+  HeldRows held = ReadMessages(path,
+                               topic,
+                               options.recording_time,
+                               options.gyroscope_only,
+                               RowsToReserve(path, chosen.messages),
+                               warnings);
   StampOrder order = SortByTime(held.rows.time, held.rows.accel, held.rows.gyro);
   order.worst_back_s /= kNsPerS;  // sorted in ns
   // The earliest time, so that two topics of one recording share a clock.

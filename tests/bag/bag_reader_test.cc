@@ -201,6 +201,43 @@ TEST(InspectBag, Ros2TopicsAndCounts) {
   ExpectTopics(s, "sensor_msgs/msg/Imu", "std_msgs/msg/String", "cdr");
 }
 
+// The topics alone: as InspectBag lists them, with the index's counts; a ROS
+// 2 bag's SQLite file is not counted (its messages would be read for it).
+TEST(ListBagTopics, TheIndexsCountsOrForASqliteBagNone) {
+  for (const char* file : {"imu_bz2.bag", "imu_cdr_zstd.mcap"}) {
+    const BagSummary s = InspectBag(Bag(file));
+    const std::vector<BagTopic> listed = ListBagTopics(Bag(file));
+    ASSERT_EQ(listed.size(), s.topics.size()) << file;
+    for (std::size_t i = 0; i < listed.size(); ++i) {
+      EXPECT_EQ(listed[i].name, s.topics[i].name) << file;
+      EXPECT_EQ(listed[i].type, s.topics[i].type) << file;
+      EXPECT_EQ(listed[i].messages, s.topics[i].messages) << file;
+    }
+  }
+  BagSummary ros2;
+  ros2.topics = ListBagTopics(Bag("imu_ros2"));
+  ASSERT_EQ(ros2.topics.size(), 2u);
+  for (const BagTopic& t : ros2.topics) {
+    EXPECT_EQ(t.messages, 0) << t.name;
+    EXPECT_EQ(t.first_ns, 0) << t.name;
+    EXPECT_EQ(t.encoding, "cdr") << t.name;
+  }
+  const BagSummary counted = InspectBag(Bag("imu_ros2"));
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(ros2.topics[i].name, counted.topics[i].name);
+    EXPECT_EQ(ros2.topics[i].type, counted.topics[i].type);
+  }
+  // make_ros2_db3.py's /chatter: one message with every tenth row, at its
+  // receive time (as SQLite's own COUNT, MIN and MAX over the table give them).
+  for (const BagTopic& t : counted.topics) {
+    if (t.name == "/chatter") {
+      EXPECT_EQ(t.messages, static_cast<std::int64_t>(kRows / 10));
+      EXPECT_EQ(t.first_ns, 1700000000002000000);
+      EXPECT_EQ(t.last_ns, 1700000018502000000);
+    }
+  }
+}
+
 TEST(ReadImuMessages, RefusesATopicOfAnotherTypeByName) {
   std::vector<std::string> w;
   for (const char* file : {"imu_none.bag", "imu_cdr_zstd.mcap", "imu_ros2"}) {
