@@ -40,7 +40,10 @@ ChosenTopic ChooseTopic(const std::string& path, const LogOptions& options) {
   std::string all;
   std::int64_t messages = 0;
   for (const BagTopic& t : topics) {
-    if (IsImuType(t.type)) imu.push_back(t.name), messages = t.messages;
+    if (IsImuType(t.type)) {
+      imu.push_back(t.name);
+      messages = t.messages;
+    }
     all += (all.empty() ? "" : ", ") + t.name + " (" + t.type + ")";
   }
   if (imu.size() == 1) return {imu.front(), messages};
