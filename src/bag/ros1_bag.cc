@@ -2,7 +2,9 @@
 // cites the layout's source). The top-level records are walked in file
 // order; a chunk is unpacked only when the index (chunk info records, read
 // first) says it holds a message of the topic, or when there is no index
-// (a recording that was not closed), then every chunk is.
+// (a recording that was not closed), then every chunk is. A chunk stored
+// without compression is read only where the index puts the topic's
+// messages, when they are a small part of it (ros1_indexed_read.h).
 #include "bag/ros1_bag.h"
 
 #include <functional>
@@ -12,6 +14,7 @@
 #include "bag/bag_io.h"
 #include "bag/decompress.h"
 #include "bag/imu_decode.h"
+#include "bag/ros1_indexed_read.h"
 #include "bag/ros1_records.h"
 #include "mpcal/error.h"
 
@@ -34,6 +37,9 @@ struct Visitor {
   std::function<void(const Record&, std::string_view data)> on_message;
   std::function<void(const Record&, std::string_view data)> on_index;
   std::function<void(const std::string& compression)> on_chunk;
+  /// A chunk stored without compression: true when it was read through the
+  /// index (ros1_indexed_read.h), false to have it walked whole.
+  std::function<bool(std::uint64_t chunk_pos, const Record& chunk)> read_stored;
 };
 
 std::string At(std::uint64_t offset) { return "byte " + std::to_string(offset); }
@@ -164,6 +170,7 @@ void VisitRecord(BagFile& file,
                         "' (a ROS 1 bag has none, bz2 or lz4)");
       }
       if (v.open_chunk && !v.open_chunk(offset)) return;
+      if (compression == "none" && v.read_stored && v.read_stored(offset, r)) return;
       if (r.data_length > kBagMaxChunkBytes)
         throw DataError("a chunk above the size cap");
       WalkChunk(Decompress(compression,
@@ -286,8 +293,18 @@ void ReadRos1Imu(const std::string& path,
     seen.insert_or_assign(c.id, c);
   };
   v.on_message = [&](const Record& r, std::string_view data) {
-    if (ids.count(ros1::U32Field(r.fields, "conn")) == 0) return;
-    batcher.Add(DecodeRos1Imu(data, ros1::TimeField(r.fields, "time")));
+    if (ids.count(r.conn) == 0) return;
+    batcher.Add(DecodeRos1Imu(data, r.time_ns));
+  };
+  ByteBuffer indexed;
+  v.read_stored = [&](std::uint64_t pos, const Record& chunk) {
+    const auto it = opened.index.chunks.find(pos);
+    if (!opened.index.usable || it == opened.index.chunks.end()) return false;
+    std::uint64_t expected = 0;
+    for (const auto& [conn, count] : it->second) {
+      if (ids.count(conn) != 0) expected += count;
+    }
+    return ros1::ReadIndexedMessages(file, chunk, ids, expected, v.on_message, indexed);
   };
   Walk(file, opened, v, warnings);
   batcher.Flush();
@@ -320,9 +337,7 @@ BagSummary InspectRos1(const std::string& path) {
   v.open_chunk = [&](std::uint64_t) { return !opened.index.usable; };
   v.on_chunk = [&](const std::string& c) { compressions.insert(c); };
   v.on_connection = [&](const Connection& c) { connections.insert_or_assign(c.id, c); };
-  v.on_message = [&](const Record& r, std::string_view) {
-    stats[ros1::U32Field(r.fields, "conn")].Add(ros1::TimeField(r.fields, "time"));
-  };
+  v.on_message = [&](const Record& r, std::string_view) { stats[r.conn].Add(r.time_ns); };
   v.on_index = [&](const Record& r, std::string_view data) {
     if (!opened.index.usable) return;
     ByteCursor c(data);

@@ -7,8 +7,9 @@
 namespace mpcal::bag::ros1 {
 namespace {
 
-std::string_view Need(const Fields& fields, std::string_view name, std::size_t size) {
-  const std::optional<std::string_view> value = fields.Find(name);
+std::string_view Need(std::optional<std::string_view> value,
+                      std::string_view name,
+                      std::size_t size) {
   if (!value) throw DataError("no '" + std::string(name) + "' field");
   if (size != 0 && value->size() != size) {
     throw DataError("field '" + std::string(name) + "' has " +
@@ -25,6 +26,25 @@ bool SameName(std::string_view field, std::string_view name) {
     if (field[i] != name[i]) return false;
   }
   return true;
+}
+
+std::string_view Need(const Fields& fields, std::string_view name, std::size_t size) {
+  return Need(fields.Find(name), name, size);
+}
+
+std::int64_t TimeOf(std::string_view value) {
+  ByteCursor c(value);
+  const std::int64_t sec = c.U32("sec");
+  return sec * 1'000'000'000 + c.U32("nsec");
+}
+
+// A record's op, and a message record's conn and time, from the fields the
+// check noted: read for every message, so without looking a name up.
+void ReadNotedFields(Record& r) {
+  r.op = ByteCursor(Need(r.fields.Op(), "op", 1)).U8("op");
+  if (r.op != kMessageData) return;
+  r.conn = ByteCursor(Need(r.fields.Conn(), "conn", 4)).U32("a u32 field");
+  r.time_ns = TimeOf(Need(r.fields.Time(), "time", 8));
 }
 
 }  // namespace
@@ -115,9 +135,7 @@ std::uint64_t U64Field(const Fields& fields, std::string_view name) {
   return ByteCursor(Need(fields, name, 8)).U64("a u64 field");
 }
 std::int64_t TimeField(const Fields& fields, std::string_view name) {
-  ByteCursor c(Need(fields, name, 8));
-  const std::int64_t sec = c.U32("sec");
-  return sec * 1'000'000'000 + c.U32("nsec");
+  return TimeOf(Need(fields, name, 8));
 }
 std::string StringField(const Fields& fields, std::string_view name) {
   return std::string(Need(fields, name, 0));
@@ -128,7 +146,7 @@ Record RecordIn(std::string_view buffer, std::uint64_t offset) {
   c.Skip(offset, "the record start");
   Record r;
   r.fields = Fields::Viewing(c.Bytes(c.U32("the header length"), "the record header"));
-  r.op = OpOf(r.fields);
+  ReadNotedFields(r);
   r.data_length = c.U32("the data length");
   r.data_offset = c.offset();
   c.Skip(r.data_length, "the record data");
@@ -166,7 +184,7 @@ Record RecordAt(BagFile& file, std::uint64_t offset) {
     const std::string length = file.ReadAt(data_at, 4, "the data length");
     data_length = ByteCursor(length).U32("data length");
   }
-  r.op = OpOf(r.fields);
+  ReadNotedFields(r);
   r.data_length = data_length;
   r.data_offset = data_at + 4;
   if (r.data_length > file.size() - r.data_offset) {

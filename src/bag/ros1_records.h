@@ -49,6 +49,11 @@ class Fields {
   /// rosbag's reader keeps the last (bag.py 2013-2052, a dict).
   std::optional<std::string_view> Find(std::string_view name) const;
   std::size_t count(std::string_view name) const { return Find(name) ? 1 : 0; }
+  /// The op, conn and time fields as the check noted them (nullopt when
+  /// absent): Find without the name's comparisons.
+  std::optional<std::string_view> Op() const { return Value(op_); }
+  std::optional<std::string_view> Conn() const { return Value(conn_); }
+  std::optional<std::string_view> Time() const { return Value(time_); }
 
  private:
   // Where a noted field's value is in bytes(); an offset, not a view, so
@@ -62,6 +67,10 @@ class Fields {
   /// Checks every field and notes op, conn and time.
   void Check();
   const Noted* NotedFor(std::string_view name) const;
+  std::optional<std::string_view> Value(const Noted& noted) const {
+    if (!noted.found) return std::nullopt;
+    return bytes().substr(noted.pos, noted.size);
+  }
 
   std::string owned_;
   std::string_view view_;
@@ -91,6 +100,10 @@ struct Record {
   std::uint32_t data_length = 0;
   /// Where the next record starts.
   std::uint64_t next = 0;
+  /// A message data record's connection and time (ns), read with its
+  /// header; 0 for the other records.
+  std::uint32_t conn = 0;
+  std::int64_t time_ns = 0;
 };
 
 /// Reads the record whose header starts at `offset` in `buffer`; its fields

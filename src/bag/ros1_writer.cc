@@ -144,8 +144,8 @@ class Ros1Rewriter {
                    m,
                    std::string_view(contents).substr(m.data_offset, m.data_length));
       } else if (m.op == ros1::kMessageData) {
-        const std::uint32_t conn = ros1::U32Field(m.fields, "conn");
-        const std::int64_t t = ros1::TimeField(m.fields, "time");
+        const std::uint32_t conn = m.conn;
+        const std::int64_t t = m.time_ns;
         index[conn].push_back({t, static_cast<std::uint32_t>(at)});
         info.start_ns = info.counts.empty() ? t : std::min(info.start_ns, t);
         info.end_ns = info.counts.empty() ? t : std::max(info.end_ns, t);

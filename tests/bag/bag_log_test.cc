@@ -8,6 +8,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "bag_fixture.h"
 #include "mpcal/error.h"
 #include "mpcal/log_reader.h"
 #include "test_util.h"
@@ -17,7 +18,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-std::string Bag(const std::string& name) { return testing::TestDataPath("bags/" + name); }
+using testing::Bag;
 
 Recording SessionCsv() { return ReadLog(Bag("session.csv"), LogOptions{}); }
 

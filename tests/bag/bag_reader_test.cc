@@ -15,6 +15,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "bag_fixture.h"
 #include "mpcal/error.h"
 #include "test_util.h"
 
@@ -30,7 +31,7 @@ constexpr std::int64_t kLatencyNs = 2'000'000;
 constexpr std::size_t kRows = 380;
 constexpr std::size_t kChatterMessages = 338;  // 300 first, then one per ten rows
 
-std::string Bag(const std::string& name) { return testing::TestDataPath("bags/" + name); }
+using testing::Bag;
 
 struct Row {
   std::int64_t stamp_ns = 0;
@@ -117,6 +118,7 @@ TEST_P(EveryFormat, GivesEverySessionRowExactlyInFileOrder) {
 INSTANTIATE_TEST_SUITE_P(Fixtures,
                          EveryFormat,
                          ::testing::Values("imu_none.bag",
+                                           "imu_among_images.bag",
                                            "imu_bz2.bag",
                                            "imu_lz4.bag",
                                            "imu_cdr_zstd.mcap",
@@ -337,6 +339,45 @@ TEST(ReadImuMessages, SkipsChunksWithoutTheTopic) {
   for (std::size_t i = later + 100; i < later + 400; ++i) imu[i] = '\xff';
   EXPECT_THAT(Error([&] { ReadAll(dir.Write("bad.bag", imu), w); }),
               HasSubstr("chunk at byte"));
+}
+
+// A stored chunk whose IMU records are a small part of it (images between
+// them) is read where the index data records after it put them: the image
+// records are not read, so damage to every one of them leaves every row.
+TEST(ReadImuMessages, ReadsAStoredChunkWhereItsIndexPutsTheTopic) {
+  ScratchDir dir;
+  std::string bag = ReadFile(Bag("imu_among_images.bag"));
+  const std::string image_record("\x04\0\0\0op=\x02\x09\0\0\0conn=\0\0\0\0", 21);
+  int damaged = 0;
+  for (std::size_t at = bag.find(image_record); at != std::string::npos;
+       at = bag.find(image_record, at + 1), ++damaged) {
+    bag.replace(at - 4, 4, "\xff\xff\xff\x7f");  // the record header's length
+  }
+  ASSERT_EQ(damaged, 19);
+  std::vector<std::string> w;
+  const auto messages = ReadAll(dir.Write("images.bag", bag), w);
+  ASSERT_EQ(messages.size(), kRows);
+  ExpectSessionPrefix(messages);
+  EXPECT_THAT(w, ::testing::IsEmpty());
+}
+
+// An index entry is checked against the record at its offset: one whose time
+// is not the record's is refused, naming the chunk.
+TEST(ReadImuMessages, AnIndexEntryThatIsNotItsRecordIsRefused) {
+  ScratchDir dir;
+  std::string bag = ReadFile(Bag("imu_among_images.bag"));
+  const std::string imu_index("\x04\0\0\0op=\x04\x09\0\0\0conn=\x01\0\0\0", 21);
+  const std::size_t index = FindNth(bag, imu_index, 3);
+  ASSERT_NE(index, std::string::npos);
+  // After the count field: the data's length, then the first entry's sec
+  // and nsec.
+  const std::size_t entry = bag.find("count=", index) + 6 + 4 + 4;
+  bag[entry + 4] = static_cast<char>(bag[entry + 4] + 1);
+  std::vector<std::string> w;
+  EXPECT_THAT(Error([&] { ReadAll(dir.Write("index.bag", bag), w); }),
+              ::testing::AllOf(HasSubstr("index.bag: chunk at byte"),
+                               HasSubstr("the index gives a message of connection 1"),
+                               HasSubstr("the record there is not it")));
 }
 
 // The summary's chunk indexes say which chunks hold the topic: the first

@@ -9,6 +9,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "bag_fixture.h"
 #include "mpcal/error.h"
 #include "mpcal/log_reader.h"
 #include "test_util.h"
@@ -18,7 +19,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-std::string Bag(const std::string& name) { return testing::TestDataPath("bags/" + name); }
+using testing::Bag;
 
 struct Expected {
   Eigen::Vector3d min;

@@ -35,9 +35,27 @@ def stamps_ns(rows):
     return stamps
 
 
+def receive_ns(rows):
+    return [EPOCH_S * 10**9 + int(round(float(r["t"]) * 1e9)) + LATENCY_NS for r in rows]
+
+
+def imu_message(seq, row, stamp_ns):
+    m = Imu()
+    m.header.seq = seq
+    m.header.stamp = rospy.Time(nsecs=stamp_ns)
+    m.header.frame_id = "imu_link"
+    m.orientation_covariance[0] = -1.0  # no orientation, as REP 145 says
+    m.linear_acceleration.x = float(row["ax"])
+    m.linear_acceleration.y = float(row["ay"])
+    m.linear_acceleration.z = float(row["az"])
+    m.angular_velocity.x = float(row["gx"])
+    m.angular_velocity.y = float(row["gy"])
+    m.angular_velocity.z = float(row["gz"])
+    return m
+
+
 def write(path, compression, rows):
-    stamps = stamps_ns(rows)
-    receive = [EPOCH_S * 10**9 + int(round(float(r["t"]) * 1e9)) + LATENCY_NS for r in rows]
+    stamps, receive = stamps_ns(rows), receive_ns(rows)
     with rosbag.Bag(path, "w", compression=compression, chunk_threshold=8192) as bag:
         for k in range(300):
             bag.write("/chatter", String(data="warming up %d" % k),
@@ -45,18 +63,7 @@ def write(path, compression, rows):
         for i, row in enumerate(rows):
             if i % 10 == 0:
                 bag.write("/chatter", String(data="row %d" % i), rospy.Time(nsecs=receive[i]))
-            m = Imu()
-            m.header.seq = i
-            m.header.stamp = rospy.Time(nsecs=stamps[i])
-            m.header.frame_id = "imu_link"
-            m.orientation_covariance[0] = -1.0  # no orientation, as REP 145 says
-            m.linear_acceleration.x = float(row["ax"])
-            m.linear_acceleration.y = float(row["ay"])
-            m.linear_acceleration.z = float(row["az"])
-            m.angular_velocity.x = float(row["gx"])
-            m.angular_velocity.y = float(row["gy"])
-            m.angular_velocity.z = float(row["gz"])
-            bag.write("/imu/data", m, rospy.Time(nsecs=receive[i]))
+            bag.write("/imu/data", imu_message(i, row, stamps[i]), rospy.Time(nsecs=receive[i]))
 
 
 def main():
