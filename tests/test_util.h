@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <random>
 #include <sstream>
 #include <string>
@@ -10,6 +11,11 @@
 #include <gtest/gtest.h>
 
 namespace mpcal::testing {
+
+/// Radians in a degree.
+inline constexpr double kDeg = std::numbers::pi / 180.0;
+/// A relative tolerance for results that differ by a few double roundings.
+inline constexpr double kArithmetic = 1e-12;
 
 /// A file among the project's own small test logs (tests/data/).
 inline std::string TestDataPath(const std::string& name) {

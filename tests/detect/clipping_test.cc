@@ -12,6 +12,7 @@
 #include "findings.h"
 #include "mpcal/detect.h"
 #include "mpcal/error.h"
+#include "mpcal/units.h"
 
 namespace mpcal {
 namespace {
@@ -20,7 +21,6 @@ using test::Names;
 using test::Words;
 using ::testing::HasSubstr;
 
-constexpr double kG = 9.80665;
 constexpr double kRateHz = 50.0;
 constexpr double kDwellS = 4.0;
 constexpr double kTurnS = 1.5;
@@ -50,10 +50,11 @@ Session Make(const std::vector<Eigen::Vector3d>& down, double shake_mps2, Sensor
     const int turn = static_cast<int>(kTurnS * kRateHz);
     for (int i = 1; i <= turn; ++i) {
       const double u = static_cast<double>(i) / turn;
-      emit(kG * ((1 - u) * previous + u * d).normalized(), shake_mps2);
+      emit(kStandardGravityMps2 * ((1 - u) * previous + u * d).normalized(), shake_mps2);
     }
     s.position_start_s.push_back(static_cast<double>(s.recording.size()) / kRateHz);
-    for (int i = 0; i < static_cast<int>(kDwellS * kRateHz); ++i) emit(kG * d, 0.0);
+    for (int i = 0; i < static_cast<int>(kDwellS * kRateHz); ++i)
+      emit(kStandardGravityMps2 * d, 0.0);
     previous = d;
   }
   s.recording.units = AccelUnits::kMps2;
@@ -126,9 +127,9 @@ TEST(Clipping, WithoutTheRangeALimitBelowOneAndAHalfGIsNotGuessed) {
 TEST(Clipping, ALimitFoundFromTheDataDropsAPositionPinnedAtIt) {
   // A ±2 g sensor with a 1.2 g offset on z: with +z up it reads 2.2 g and
   // sticks at the limit; the hand shake of the turns hits it too.
-  const double limit = 2.0 * kG;
+  const double limit = 2.0 * kStandardGravityMps2;
   const Session s = Make(Directions(), 6.0, [&](const Eigen::Vector3d& y) {
-    return Clip(y + Eigen::Vector3d(0, 0, 1.2 * kG), limit);
+    return Clip(y + Eigen::Vector3d(0, 0, 1.2 * kStandardGravityMps2), limit);
   });
   const DetectResult r = DetectStatic(s.recording, DetectOptions{});
   EXPECT_GT(r.clipped_samples, static_cast<std::size_t>(kDwellS * kRateHz) / 2);
@@ -178,7 +179,7 @@ TEST(Clipping, NegativeOrNonFiniteRangeIsRejected) {
   EXPECT_THAT(options.Validate(), HasSubstr("range_mps2"));
   Recording r;
   r.time_s = {0.0, 0.1, 0.2};
-  r.accel.assign(3, Eigen::Vector3d(0, 0, kG));
+  r.accel.assign(3, Eigen::Vector3d(0, 0, kStandardGravityMps2));
   EXPECT_THROW(DetectStatic(r, options), Error);
 }
 

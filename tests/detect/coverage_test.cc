@@ -13,6 +13,7 @@
 #include "findings.h"
 #include "mpcal/error.h"
 #include "mpcal/log_reader.h"
+#include "mpcal/units.h"
 #include "test_util.h"
 
 namespace mpcal {
@@ -24,7 +25,6 @@ using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-constexpr double kG = 9.80665;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 std::vector<Eigen::Vector3d> Cube26() {
@@ -89,8 +89,8 @@ TEST(FitSphere, FallsBackWhenThePositionsDoNotSpanTheSphere) {
   EXPECT_FALSE(counts.fitted);
   EXPECT_EQ(counts.centre, Eigen::Vector3d::Constant(32768));
   EXPECT_NEAR(counts.radius, 4000.0, 1e-9);
-  const SphereFit mps2 =
-      FitSphere(Readings(dirs, kG, Eigen::Vector3d::Zero()), AccelUnits::kMps2);
+  const SphereFit mps2 = FitSphere(
+      Readings(dirs, kStandardGravityMps2, Eigen::Vector3d::Zero()), AccelUnits::kMps2);
   EXPECT_FALSE(mps2.fitted);
   EXPECT_EQ(mps2.centre, Eigen::Vector3d::Zero());
   // Signed counts (a negative reading): no unsigned offset.
@@ -108,7 +108,8 @@ TEST(FitSphere, IgnoresAFitThroughPositionsOnOneSmallCap) {
     dirs.push_back(
         Eigen::Vector3d(0.3 * std::cos(k), 0.3 * std::sin(k), 1.0).normalized());
   }
-  std::vector<Eigen::Vector3d> means = Readings(dirs, kG, Eigen::Vector3d::Zero());
+  std::vector<Eigen::Vector3d> means =
+      Readings(dirs, kStandardGravityMps2, Eigen::Vector3d::Zero());
   means[2].z() += 0.05;  // noise the cap cannot resolve
   const SphereFit fit = FitSphere(means, AccelUnits::kMps2);
   EXPECT_FALSE(fit.fitted);
@@ -145,7 +146,8 @@ TEST(AssessCoverage, SixFacesAreNotEnoughForNineParameters) {
   std::vector<Eigen::Vector3d> dirs;
   for (int i = 0; i < 6; ++i) dirs.push_back(c[static_cast<std::size_t>(i)].direction);
   dirs.push_back(c[4].direction);  // the rest at the start, +z up again
-  const auto means = Readings(dirs, kG, Eigen::Vector3d(0.2, -0.1, 0.3));
+  const auto means =
+      Readings(dirs, kStandardGravityMps2, Eigen::Vector3d(0.2, -0.1, 0.3));
   const CoverageResult r = AssessCoverage(means, {});
   EXPECT_EQ(r.verdict, CoverageVerdict::kNotEnough);
   EXPECT_FALSE(r.good_enough());
@@ -184,7 +186,8 @@ TEST(AssessCoverage, SaysToHoldLongerWhenPositionsWereDroppedAsTooShort) {
   // Four positions kept, twenty held too briefly: recording more the same
   // way would not help.
   DetectResult det;
-  for (const auto& m : Readings(Cube26(), kG, Eigen::Vector3d::Zero())) {
+  for (const auto& m :
+       Readings(Cube26(), kStandardGravityMps2, Eigen::Vector3d::Zero())) {
     if (det.intervals.size() == 4) break;
     StaticInterval iv;
     iv.mean = m;
@@ -216,7 +219,7 @@ TEST(AssessCoverage, NamesTheFacesNeverDown) {
   }
   ASSERT_EQ(dirs.size(), 11u);
   const CoverageResult r =
-      AssessCoverage(Readings(dirs, kG, Eigen::Vector3d::Zero()), {});
+      AssessCoverage(Readings(dirs, kStandardGravityMps2, Eigen::Vector3d::Zero()), {});
   EXPECT_EQ(r.verdict, CoverageVerdict::kUsableWithWarnings) << Summary(r);
   EXPECT_FALSE(r.axes[1].near_down);
   EXPECT_FALSE(r.axes[2].near_up);
@@ -237,7 +240,7 @@ TEST(AssessCoverage, PositionsInOnePlaneDoNotDetermineTheModel) {
         std::cos(k * std::numbers::pi / 6), std::sin(k * std::numbers::pi / 6), 0);
   }
   const CoverageResult r =
-      AssessCoverage(Readings(dirs, kG, Eigen::Vector3d::Zero()), {});
+      AssessCoverage(Readings(dirs, kStandardGravityMps2, Eigen::Vector3d::Zero()), {});
   EXPECT_EQ(r.verdict, CoverageVerdict::kNotEnough);
   EXPECT_LT(r.observability, 1e-6);
   EXPECT_THAT(Summary(r), HasSubstr("do not determine all 9 parameters"));
@@ -250,8 +253,8 @@ TEST(AssessCoverage, TwelveSpreadPositionsAreUsableWithAWarning) {
   for (int i : {0, 1, 2, 3, 4, 5, 18, 19, 20, 21, 22, 25}) {
     dirs.push_back(c[static_cast<std::size_t>(i)].direction);
   }
-  const CoverageResult r =
-      AssessCoverage(Readings(dirs, kG, Eigen::Vector3d::Zero(), 3.0), {});
+  const CoverageResult r = AssessCoverage(
+      Readings(dirs, kStandardGravityMps2, Eigen::Vector3d::Zero(), 3.0), {});
   EXPECT_EQ(r.verdict, CoverageVerdict::kUsableWithWarnings) << Summary(r);
   EXPECT_THAT(Summary(r),
               HasSubstr("12 distinct orientations; the paper recommends more than 18"));
@@ -261,8 +264,8 @@ TEST(AssessCoverage, TwelveSpreadPositionsAreUsableWithAWarning) {
 TEST(AssessCoverage, CountsRepeatedOrientationsOnce) {
   std::vector<Eigen::Vector3d> dirs = Cube26();
   for (int k = 0; k < 5; ++k) dirs.push_back(dirs[static_cast<std::size_t>(k)]);
-  const CoverageResult r =
-      AssessCoverage(Readings(dirs, kG, Eigen::Vector3d::Zero(), 2.0), {});
+  const CoverageResult r = AssessCoverage(
+      Readings(dirs, kStandardGravityMps2, Eigen::Vector3d::Zero(), 2.0), {});
   EXPECT_EQ(r.positions, 31);
   EXPECT_EQ(r.distinct_positions, 26);
 }

@@ -17,6 +17,7 @@
 #include "mpcal/log_reader.h"
 #include "mpcal/not_finite.h"
 #include "mpcal/simulate.h"
+#include "mpcal/units.h"
 #include "test_util.h"
 
 namespace mpcal {
@@ -27,7 +28,6 @@ using test::Words;
 using ::testing::HasSubstr;
 using testing::RealDataPath;
 
-constexpr double kG = 9.80665;
 // A mean of n white-noise samples is within this many σ/√n of the truth.
 constexpr double kMeanTolSigmas = 5.0;
 
@@ -71,14 +71,16 @@ struct Maker {
           const double smooth = s * s * (3 - 2 * s);
           Eigen::Vector3d d = ((1 - smooth) * prev + smooth * dir);
           if (d.norm() < 1e-6) d = Eigen::Vector3d::UnitX();  // opposite faces
-          emit(kG * d.normalized(), shake_mps2 * std::sin(std::numbers::pi * s));
+          emit(kStandardGravityMps2 * d.normalized(),
+               shake_mps2 * std::sin(std::numbers::pi * s));
         }
       }
       const std::size_t begin = m.recording.size();
       const auto dwell_n = static_cast<std::size_t>(positions[p].second * rate_hz);
-      for (std::size_t i = 0; i < dwell_n; ++i) emit(kG * dir, 0.0);
+      for (std::size_t i = 0; i < dwell_n; ++i) emit(kStandardGravityMps2 * dir, 0.0);
       m.still.emplace_back(begin, m.recording.size());
-      m.truth.push_back(Eigen::Vector3d::Constant(offset) + scale * kG * dir);
+      m.truth.push_back(Eigen::Vector3d::Constant(offset) +
+                        scale * kStandardGravityMps2 * dir);
       prev = dir;
     }
     m.recording.source = "<made>";
@@ -169,7 +171,7 @@ TEST(DetectStatic, TrimsTheSettlingAtBothEnds) {
 TEST(DetectStatic, GivesTheSameIntervalsInCountsGAndMps2) {
   Maker mk;
   const Made mps2 = mk.Make(CubeFaces(5.0));
-  mk.scale = 1.0 / kG;
+  mk.scale = 1.0 / kStandardGravityMps2;
   const Made g = mk.Make(CubeFaces(5.0));
   mk.scale = 400.0;  // counts per m/s², quantised, offset as an unsigned ADC
   mk.offset = 32768;
@@ -193,7 +195,8 @@ TEST(DetectStatic, GivesTheSameIntervalsInCountsGAndMps2) {
     EXPECT_LT((c.intervals[k].mean - counts.truth[k]).cwiseAbs().maxCoeff(), tol);
   }
   EXPECT_NEAR(c.quiet_level / 400.0, a.quiet_level, 0.1 * a.quiet_level);
-  EXPECT_NEAR(c.gravity_units, 400 * kG, 0.01 * 400 * kG);
+  EXPECT_NEAR(
+      c.gravity_units, 400 * kStandardGravityMps2, 0.01 * 400 * kStandardGravityMps2);
 }
 
 TEST(DetectStatic, MergesAShortBumpAtTheSameOrientation) {
@@ -323,7 +326,7 @@ TEST(DetectStatic, RejectsARecordingShorterThanAWindow) {
   Recording r;
   for (int i = 0; i < 50; ++i) {
     r.time_s.push_back(i * 0.01);
-    r.accel.emplace_back(0, 0, kG);
+    r.accel.emplace_back(0, 0, kStandardGravityMps2);
   }
   try {
     DetectStatic(r, {});
@@ -379,15 +382,15 @@ TEST(DetectStatic, FindsNothingInARecordingThatNeverStopsMovingAndSaysWhy) {
     const double a = 0.52 * t;
     const double b = 0.31 * t;
     r.time_s.push_back(t);
-    r.accel.push_back(kG * Eigen::Vector3d(std::cos(a) * std::sin(b),
-                                           std::sin(a) * std::sin(b),
-                                           std::cos(b)) +
+    r.accel.push_back(kStandardGravityMps2 * Eigen::Vector3d(std::cos(a) * std::sin(b),
+                                                             std::sin(a) * std::sin(b),
+                                                             std::cos(b)) +
                       Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)));
   }
   const DetectResult res = DetectStatic(r, {});
   EXPECT_TRUE(res.intervals.empty());
   EXPECT_TRUE(res.threshold_capped);
-  EXPECT_NEAR(res.threshold, 0.05 * kG, 1e-12);
+  EXPECT_NEAR(res.threshold, 0.05 * kStandardGravityMps2, 1e-12);
   EXPECT_EQ(res.finding.kind, DetectOutcome::kNeverStill);
   EXPECT_THAT(Describe(res.finding), HasSubstr("never stops moving"));
   EXPECT_TRUE(Names(res.finding.advice, Option::kDetectMaxStill));

@@ -14,11 +14,10 @@
 #include "detect/motion_statistic.h"
 #include "mpcal/detect.h"
 #include "mpcal/error.h"
+#include "mpcal/units.h"
 
 namespace mpcal {
 namespace {
-
-constexpr double kG = 9.80665;
 
 // A record as a log reader hands it over.
 struct Rows {
@@ -56,7 +55,9 @@ struct StillMaker {
       const double s =
           turn_s > 0.0 ? std::clamp((t - turn_at_s) / turn_s, 0.0, 1.0) : 0.0;
       const double angle = 0.5 * std::numbers::pi * s * s * (3.0 - 2.0 * s);
-      const Eigen::Vector3d f(kG * std::sin(angle), 0.0, kG * std::cos(angle));
+      const Eigen::Vector3d f(kStandardGravityMps2 * std::sin(angle),
+                              0.0,
+                              kStandardGravityMps2 * std::cos(angle));
       r.t.push_back(t);
       r.a.push_back(f + Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)));
     }
@@ -201,19 +202,19 @@ TEST(StillnessMonitor, TheWindowIsSizedFromTheFirst4096Rows) {
 
 TEST(StillnessMonitor, AReadingBeyondOneAndAHalfGIsAtTheRangeLimit) {
   Rows r = StillMaker{.duration_s = 60.0}.Make();
-  r.a[4000].z() = 1.6 * kG;
+  r.a[4000].z() = 1.6 * kStandardGravityMps2;
   const StillVerdict v = Feed(r);
   EXPECT_EQ(v.reason, NotStillReason::kRangeLimit);
   EXPECT_EQ(v.gap_at_s, r.t[4000]);
   // A sensor of +-2 g reads 1.6 g: not its limit, but a bump all the same.
   DetectOptions two_g;
-  two_g.range_mps2 = 2.0 * kG;
+  two_g.range_mps2 = 2.0 * kStandardGravityMps2;
   EXPECT_EQ(Feed(r, {}, two_g).reason, NotStillReason::kMoved);
   // ... and 99 % of its range is.
-  r.a[4000].z() = 0.995 * 2.0 * kG;
+  r.a[4000].z() = 0.995 * 2.0 * kStandardGravityMps2;
   EXPECT_EQ(Feed(r, {}, two_g).reason, NotStillReason::kRangeLimit);
   // Negative readings too, on any axis.
-  r.a[4000] = Eigen::Vector3d(-1.6 * kG, 0.0, kG);
+  r.a[4000] = Eigen::Vector3d(-1.6 * kStandardGravityMps2, 0.0, kStandardGravityMps2);
   EXPECT_EQ(Feed(r).reason, NotStillReason::kRangeLimit);
 }
 
@@ -268,7 +269,7 @@ TEST(StillnessMonitor, AQuantisedRecordIsStillByTheReadingStep) {
   // never change (statistic 0, the quiet level 0), some flicker one step.
   Rows r = StillMaker{.duration_s = 300.0, .sigma_mps2 = 0.0015}.Make();
   for (auto& a : r.a) {
-    a.z() += 9.80 - kG;  // on a step, so the flicker is rare
+    a.z() += 9.80 - kStandardGravityMps2;  // on a step, so the flicker is rare
     a = (a.array() * 100.0).round() / 100.0;
   }
   const StillVerdict v = Feed(r);
@@ -293,14 +294,14 @@ TEST(StillnessMonitor, RawCountsGiveNoVerdict) {
 TEST(StillnessMonitor, ReadingsInGGiveTheFiguresInG) {
   const Rows mps2 = StillMaker{.duration_s = 30.0}.Make();
   Rows g = mps2;
-  for (auto& a : g.a) a /= kG;
+  for (auto& a : g.a) a /= kStandardGravityMps2;
   StillnessMonitor monitor({}, AccelUnits::kG);
   monitor.Add(g.t, g.a);
   const StillVerdict v = monitor.Verdict();
   const StillVerdict in_mps2 = Feed(mps2);
   EXPECT_TRUE(v.still);
-  EXPECT_NEAR(v.quiet_level * kG / in_mps2.quiet_level, 1.0, 1e-9);
-  EXPECT_NEAR(v.threshold * kG / in_mps2.threshold, 1.0, 1e-9);
+  EXPECT_NEAR(v.quiet_level * kStandardGravityMps2 / in_mps2.quiet_level, 1.0, 1e-9);
+  EXPECT_NEAR(v.threshold * kStandardGravityMps2 / in_mps2.threshold, 1.0, 1e-9);
 }
 
 TEST(StillnessMonitor, RejectsWhatDetectStaticRejects) {

@@ -15,12 +15,12 @@
 namespace mpcal {
 namespace {
 
-constexpr double kRateHz = 100.0;
+constexpr double kTurnRateHz = 100.0;
 constexpr double kGravity = 9.81;
 
 // Rest [0, 10) s, a 90° turn about x over [10, 12), rest [12, 22) s, a 90°
 // turn about y over [22, 24), rest to 34 s. Noise σ per sample (0: none).
-struct Session {
+struct TurnSession {
   Recording recording;
   std::vector<StaticInterval> detected;  // trimmed by 0.8 s at each end
   std::vector<double> turn_start_s = {10.0, 22.0};
@@ -29,8 +29,8 @@ struct Session {
 
 StaticInterval Interval(const Recording& r, double from_s, double to_s) {
   StaticInterval in;
-  in.begin = static_cast<std::size_t>(std::lround(from_s * kRateHz));
-  in.end = static_cast<std::size_t>(std::lround(to_s * kRateHz));
+  in.begin = static_cast<std::size_t>(std::lround(from_s * kTurnRateHz));
+  in.end = static_cast<std::size_t>(std::lround(to_s * kTurnRateHz));
   in.start_s = r.time_s[in.begin];
   in.end_s = r.time_s[in.end - 1];
   const auto n = static_cast<double>(in.end - in.begin);
@@ -42,16 +42,16 @@ StaticInterval Interval(const Recording& r, double from_s, double to_s) {
   return in;
 }
 
-Session MakeSession(unsigned seed, double gyro_sigma, double accel_sigma) {
-  Session s;
+TurnSession MakeSession(unsigned seed, double gyro_sigma, double accel_sigma) {
+  TurnSession s;
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal;
   const Eigen::Vector3d bias(0.01, -0.02, 0.005);
-  const std::size_t n = 34 * static_cast<std::size_t>(kRateHz);
+  const std::size_t n = 34 * static_cast<std::size_t>(kTurnRateHz);
   Eigen::Quaterniond q = Eigen::Quaterniond::Identity();  // body to level
   const Eigen::Vector3d axes[2] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY()};
   for (std::size_t i = 0; i < n; ++i) {
-    const double t = static_cast<double>(i) / kRateHz;
+    const double t = static_cast<double>(i) / kTurnRateHz;
     Eigen::Vector3d rate = Eigen::Vector3d::Zero();
     for (int k = 0; k < 2; ++k) {
       const double tau = (t - s.turn_start_s[k]) / 2.0;
@@ -62,7 +62,7 @@ Session MakeSession(unsigned seed, double gyro_sigma, double accel_sigma) {
       }
     }
     q = q * Eigen::Quaterniond(Eigen::AngleAxisd(
-                rate.norm() / kRateHz,
+                rate.norm() / kTurnRateHz,
                 rate.norm() > 0 ? rate.normalized() : Eigen::Vector3d::UnitZ()));
     Eigen::Vector3d noise_g(normal(rng), normal(rng), normal(rng));
     Eigen::Vector3d noise_a(normal(rng), normal(rng), normal(rng));
@@ -82,7 +82,7 @@ TEST(ExtendToMotion, ReachesTheMotionAndNotBeyond) {
   int near = 0;  // within 0.2 s of the motion: the two windows of 50 ms put
                  // back, and the minimum jerk's slow start under the noise
   for (unsigned seed = 1; seed <= 20; ++seed) {
-    const Session s = MakeSession(seed, 0.005, 0.02);
+    const TurnSession s = MakeSession(seed, 0.005, 0.02);
     const std::vector<StaticInterval> e = ExtendToMotion(s.recording, s.detected);
     ASSERT_EQ(e.size(), 3u);
     for (std::size_t k = 0; k < 2; ++k) {
@@ -108,7 +108,7 @@ TEST(ExtendToMotion, ReachesTheMotionAndNotBeyond) {
 }
 
 TEST(ExtendToMotion, AQuantisedSensorThatNeverMovesAtRestGrowsToo) {
-  const Session s = MakeSession(1, 0.0, 0.0);  // readings constant at rest
+  const TurnSession s = MakeSession(1, 0.0, 0.0);  // readings constant at rest
   const std::vector<StaticInterval> e = ExtendToMotion(s.recording, s.detected);
   const double end_s = s.recording.time_s[e[0].end - 1];
   EXPECT_LE(end_s, s.turn_start_s[0]);
@@ -117,7 +117,7 @@ TEST(ExtendToMotion, AQuantisedSensorThatNeverMovesAtRestGrowsToo) {
 
 TEST(ExtendToMotion, APositionNeverReachesPastItsNeighbour) {
   // Two detected pieces of one rest, 1 s apart: they meet, and do not cross.
-  const Session s = MakeSession(3, 0.005, 0.02);
+  const TurnSession s = MakeSession(3, 0.005, 0.02);
   const std::vector<StaticInterval> pieces = {Interval(s.recording, 1.0, 4.0),
                                               Interval(s.recording, 5.0, 9.0)};
   const std::vector<StaticInterval> e = ExtendToMotion(s.recording, pieces);

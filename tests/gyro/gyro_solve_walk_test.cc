@@ -12,11 +12,12 @@
 #include "mpcal/detect.h"
 #include "mpcal/gyro.h"
 #include "mpcal/simulate.h"
+#include "test_util.h"
 
 namespace mpcal {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using testing::kDeg;
 // A quiet gyroscope whose bias wanders: over a 2 s turn between positions
 // 7 s apart the walk leaves ~3e-4 rad, three times the white noise's part,
 // and quiet accelerometer directions (~1e-4 rad), so the walk dominates.

@@ -15,11 +15,12 @@
 #include "mpcal/error.h"
 #include "mpcal/gyro.h"
 #include "mpcal/simulate.h"
+#include "test_util.h"
 
 namespace mpcal {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using testing::kDeg;
 
 SimulateStaticOptions GyroSession(std::uint64_t seed) {
   SimulateStaticOptions o;

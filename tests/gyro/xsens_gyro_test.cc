@@ -16,7 +16,7 @@
 namespace mpcal {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using testing::kDeg;
 
 Recording XsensImu() {
   LogOptions options;

@@ -30,7 +30,7 @@ namespace {
 using ::testing::HasSubstr;
 using Clock = std::chrono::steady_clock;
 
-std::string Lines(int rows, int first = 0) {
+std::string ImuLines(int rows, int first = 0) {
   std::string text;
   for (int i = first; i < first + rows; ++i) {
     text += fmt::format(
@@ -92,7 +92,7 @@ class StdinPipe {
 
 TEST(LiveSource, StandardInputThroughAPipeToItsEnd) {
   StdinPipe pipe;
-  const std::string text = Lines(300);
+  const std::string text = ImuLines(300);
   auto source = OpenLiveSource({"-"});
   EXPECT_EQ(source->source(), "<stdin>");
   std::thread writer([&] {
@@ -163,10 +163,10 @@ TEST(LiveSource, AStreamThatStopsIsAnErrorWithinTheTimeout) {
   LiveSourceOptions options{"-"};
   options.timeout_s = 0.3;
   auto source = OpenLiveSource(options);
-  WriteAll(pipe.write_fd(), Lines(5));
+  WriteAll(pipe.write_fd(), ImuLines(5));
   std::string got;
   ASSERT_TRUE(source->Read(&got, 1.0));
-  EXPECT_EQ(got, Lines(5));
+  EXPECT_EQ(got, ImuLines(5));
   const auto last_byte = Clock::now();
   try {
     while (source->Read(&got, 10.0)) {  // waits longer than the timeout: bounded by it
@@ -198,7 +198,7 @@ int Listen(int type, int* port) {
 TEST(LiveSource, TcpOnTheLoopbackToThePeerClosing) {
   int port = 0;
   const int server = Listen(SOCK_STREAM, &port);
-  const std::string text = Lines(500);
+  const std::string text = ImuLines(500);
   std::thread logger([&] {
     const int client = ::accept(server, nullptr, nullptr);
     SendPaced(client, text);
@@ -220,7 +220,7 @@ TEST(LiveSource, TcpThatGoesSilentIsAnErrorWithinTheTimeout) {
   int client = -1;
   std::thread logger([&] {
     client = ::accept(server, nullptr, nullptr);
-    WriteAll(client, Lines(3));  // then silent, the connection open
+    WriteAll(client, ImuLines(3));  // then silent, the connection open
   });
   LiveSourceOptions options{fmt::format("tcp:localhost:{}", port)};
   options.timeout_s = 0.25;
@@ -268,10 +268,10 @@ TEST(LiveSource, UdpDatagramsHoldWholeLines) {
   auto send = [&](const std::string& d) {
     ::sendto(sender, d.data(), d.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof(to));
   };
-  send(Lines(2));        // two lines in one datagram
+  send(ImuLines(2));     // two lines in one datagram
   send("0.02,0,0,9.8");  // a line without its end: given one
-  send(Lines(1, 3));
-  const std::string want = Lines(2) + "0.02,0,0,9.8\n" + Lines(1, 3);
+  send(ImuLines(1, 3));
+  const std::string want = ImuLines(2) + "0.02,0,0,9.8\n" + ImuLines(1, 3);
   const std::string got = Drain(source.get(), want.size());
   EXPECT_EQ(got, want);
   ::close(sender);
@@ -293,7 +293,7 @@ TEST(LiveSource, UdpOnEveryAddressHearsAnIpv4Sender) {
   to.sin_family = AF_INET;
   to.sin_port = htons(static_cast<std::uint16_t>(port));
   to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  const std::string lines = Lines(3);
+  const std::string lines = ImuLines(3);
   ::sendto(sender,
            lines.data(),
            lines.size(),
@@ -341,7 +341,7 @@ TEST(LiveSource, APseudoTerminalAsASerialPortWithBootTextAndACutLine) {
   // text, then its lines.
   const std::string text =
       "02,0.001,0.002,0.003\n" + std::string("\xf8\x00\xfe\r\n", 5) +
-      "Initializing I2C devices...\r\nMPU6050 connection successful\r\n" + Lines(200);
+      "Initializing I2C devices...\r\nMPU6050 connection successful\r\n" + ImuLines(200);
   std::thread sensor([&] {
     SendPaced(pty.master, text);
     std::this_thread::sleep_for(std::chrono::milliseconds(50));

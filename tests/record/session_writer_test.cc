@@ -31,7 +31,7 @@ using ::testing::HasSubstr;
 using testing::ReadFile;
 using testing::ScratchDir;
 
-std::string Lines(int rows, int first = 0) {
+std::string AccelLines(int rows, int first = 0) {
   std::string text;
   for (int i = first; i < first + rows; ++i) {
     text += fmt::format("{:.2f},0.01,-0.02,{:.4f}\n", 0.01 * i, 9.81 + 0.001 * (i % 7));
@@ -48,7 +48,7 @@ TEST(SessionWriter, TheFileIsAReadableLogAfterEveryFlush) {
   Recording rows;
   std::size_t total = 0;
   for (int block = 0; block < 4; ++block) {
-    parser.Feed(Lines(60, 60 * block), &rows);
+    parser.Feed(AccelLines(60, 60 * block), &rows);
     writer.Write(parser.TakeSessionText());
     writer.Flush();
     total = rows.size();
@@ -58,7 +58,7 @@ TEST(SessionWriter, TheFileIsAReadableLogAfterEveryFlush) {
   }
   EXPECT_EQ(total, 240u);
   EXPECT_TRUE(writer.Close());
-  EXPECT_EQ(ReadFile(path), "t,ax,ay,az\n" + Lines(240));
+  EXPECT_EQ(ReadFile(path), "t,ax,ay,az\n" + AccelLines(240));
 }
 
 TEST(SessionWriter, NoTextNoFile) {
@@ -113,7 +113,7 @@ extern "C" void OnInterrupt(int) { g_interrupted = 1; }
     LiveLogParser parser({}, "live");
     Recording rows;
     for (int block = 0; !g_interrupted && block < 100000; ++block) {
-      parser.Feed(Lines(50, 50 * block), &rows);
+      parser.Feed(AccelLines(50, 50 * block), &rows);
       rows.time_s.clear();
       rows.accel.clear();
       writer.Write(parser.TakeSessionText());
@@ -158,7 +158,7 @@ TEST(SessionWriter, CtrlCLeavesACompleteReadableLog) {
   EXPECT_TRUE(back.warnings.empty()) << back.warnings.front();  // no cut line: complete
   ASSERT_GE(back.size(), 450u);
   EXPECT_EQ(back.size() % 50, 0u);  // whole blocks, as fed
-  EXPECT_EQ(ReadFile(path), "t,ax,ay,az\n" + Lines(static_cast<int>(back.size())));
+  EXPECT_EQ(ReadFile(path), "t,ax,ay,az\n" + AccelLines(static_cast<int>(back.size())));
 }
 
 TEST(SessionWriter, AKilledProcessLeavesWhatWasFlushed) {

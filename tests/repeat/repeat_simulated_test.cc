@@ -10,12 +10,13 @@
 #include "mpcal/calibrate.h"
 #include "mpcal/repeat.h"
 #include "mpcal/simulate.h"
+#include "test_util.h"
 
 namespace mpcal {
 namespace {
 
 constexpr int kTrials = 3;
-constexpr double kArithmetic = 1e-12;  // relative, a few double roundings
+using testing::kArithmetic;
 
 // The verdicts below are taken at 0.1 % rather than the default 1 %: a 1 %
 // test flags a parameter that did not change in about 1 % of cases by design

@@ -10,6 +10,7 @@
 
 #include "mpcal/error.h"
 #include "mpcal/repeat.h"
+#include "test_util.h"
 
 namespace mpcal {
 namespace {
@@ -17,7 +18,7 @@ namespace {
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-constexpr double kArithmetic = 1e-12;  // relative: a few double roundings
+using testing::kArithmetic;
 
 // The tail probabilities below are quoted from chi-square tables to 1e-12.
 constexpr double kTableTolerance = 1e-9;

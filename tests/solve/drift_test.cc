@@ -12,6 +12,7 @@
 #include "mpcal/distributions.h"
 #include "mpcal/solve.h"
 #include "solve/weights.h"
+#include "solve_fixture.h"
 #include "synthetic_positions.h"
 
 namespace mpcal {
@@ -23,8 +24,8 @@ using testing::kTestGravityMps2;
 using testing::MakeSession;
 using testing::Tilted;
 
-const Eigen::Vector3d kNoise(0.02, 0.025, 0.03);  // m/s² per sample
-constexpr std::size_t kSamples = 1000;
+using testing::kNoise;
+using testing::kSamples;
 constexpr double kDwellS = 10.0;
 constexpr double kStepS = 12.0;
 

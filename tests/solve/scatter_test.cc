@@ -10,6 +10,7 @@
 #include "mpcal/error.h"
 #include "mpcal/solve.h"
 #include "solve/weights.h"
+#include "solve_fixture.h"
 #include "synthetic_positions.h"
 
 namespace mpcal {
@@ -20,8 +21,8 @@ using testing::CubeDirections;
 using testing::MakeSession;
 using testing::Tilted;
 
-const Eigen::Vector3d kNoise(0.02, 0.025, 0.03);  // m/s² per sample
-constexpr std::size_t kSamples = 1000;
+using testing::kNoise;
+using testing::kSamples;
 
 TEST(ChiSquare1MedianQuantile, IsTheChiSquareQuantileForOneValue) {
   // One value: its median is itself; χ²₁ exceeds 6.6349 with probability 1 %.

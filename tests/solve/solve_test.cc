@@ -9,6 +9,7 @@
 #include "mpcal/cramer_rao.h"
 #include "mpcal/error.h"
 #include "solve/weights.h"
+#include "solve_fixture.h"
 #include "synthetic_positions.h"
 
 namespace mpcal {
@@ -21,9 +22,9 @@ using testing::kTestGravityMps2;
 using testing::MakeSession;
 using testing::Tilted;
 
-constexpr double kNoiseFreeTolerance = 1e-8;      // packed parameters, noise-free means
-const Eigen::Vector3d kNoise(0.02, 0.025, 0.03);  // m/s² per sample
-constexpr std::size_t kSamples = 1000;
+constexpr double kNoiseFreeTolerance = 1e-8;  // packed parameters, noise-free means
+using testing::kNoise;
+using testing::kSamples;
 
 TEST(SolveOptions, DefaultsAreValid) { EXPECT_EQ(SolveOptions{}.Validate(), ""); }
 

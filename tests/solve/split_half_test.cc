@@ -7,6 +7,7 @@
 
 #include "mpcal/solve.h"
 #include "solve/split_half.h"
+#include "solve_fixture.h"
 #include "synthetic_positions.h"
 
 namespace mpcal {
@@ -17,8 +18,8 @@ using testing::CubeDirections;
 using testing::MakeSession;
 using testing::Tilted;
 
-const Eigen::Vector3d kNoise(0.02, 0.025, 0.03);  // m/s² per sample
-constexpr std::size_t kSamples = 1000;
+using testing::kNoise;
+using testing::kSamples;
 
 // The 26 cube directions twice, in two rounds: each half by time and each
 // alternate half holds every direction.
