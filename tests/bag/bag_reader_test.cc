@@ -90,7 +90,7 @@ void ExpectSessionPrefix(const std::vector<ImuMessage>& messages) {
   }
 }
 
-std::string Error(const std::function<void()>& f) {
+std::string ErrorText(const std::function<void()>& f) {
   try {
     f();
   } catch (const mpcal::Error& e) {
@@ -133,10 +133,10 @@ TEST(DetectBagFormat, TellsTheFormatsApart) {
   EXPECT_EQ(DetectBagFormat(Bag("imu_lz4.bag")), BagFormat::kRos1);
   EXPECT_EQ(DetectBagFormat(Bag("imu_cdr_zstd.mcap")), BagFormat::kMcap);
   EXPECT_EQ(DetectBagFormat(Bag("imu_ros2")), BagFormat::kRos2Sqlite);
-  EXPECT_THAT(Error([] { DetectBagFormat(Bag("session.csv")); }),
+  EXPECT_THAT(ErrorText([] { DetectBagFormat(Bag("session.csv")); }),
               HasSubstr("starts with 't,ax,ay,az,gx,gy'"));
   ScratchDir dir;
-  EXPECT_THAT(Error([&] { DetectBagFormat(dir.Write("empty.bag", "")); }),
+  EXPECT_THAT(ErrorText([&] { DetectBagFormat(dir.Write("empty.bag", "")); }),
               HasSubstr("empty.bag: the file is empty"));
 }
 
@@ -243,7 +243,7 @@ TEST(ListBagTopics, TheIndexsCountsOrForASqliteBagNone) {
 TEST(ReadImuMessages, RefusesATopicOfAnotherTypeByName) {
   std::vector<std::string> w;
   for (const char* file : {"imu_none.bag", "imu_cdr_zstd.mcap", "imu_ros2"}) {
-    EXPECT_THAT(Error([&] { ReadAll(Bag(file), w, "/chatter"); }),
+    EXPECT_THAT(ErrorText([&] { ReadAll(Bag(file), w, "/chatter"); }),
                 ::testing::AllOf(HasSubstr("'/chatter'"), HasSubstr("std_msgs/")))
         << file;
   }
@@ -253,7 +253,7 @@ TEST(ReadImuMessages, AnAbsentTopicListsTheTopicsThere) {
   std::vector<std::string> w;
   for (const char* file :
        {"imu_lz4.bag", "imu_ros1.mcap", "imu_ros2", "imu_cdr_plain.mcap"}) {
-    EXPECT_THAT(Error([&] { ReadAll(Bag(file), w, "/imu"); }),
+    EXPECT_THAT(ErrorText([&] { ReadAll(Bag(file), w, "/imu"); }),
                 ::testing::AllOf(HasSubstr("no topic '/imu'"),
                                  HasSubstr("/imu/data (sensor_msgs/")))
         << file;
@@ -262,7 +262,7 @@ TEST(ReadImuMessages, AnAbsentTopicListsTheTopicsThere) {
 
 TEST(ReadImuMessages, AnEmptyBagHasNoTopic) {
   std::vector<std::string> w;
-  EXPECT_THAT(Error([&] { ReadAll(Bag("empty.bag"), w); }),
+  EXPECT_THAT(ErrorText([&] { ReadAll(Bag("empty.bag"), w); }),
               HasSubstr("empty.bag: no topic '/imu/data'; the bag holds none"));
 }
 
@@ -271,7 +271,7 @@ TEST(ReadImuMessages, WrongMagicIsRefused) {
   std::string bag = ReadFile(Bag("imu_none.bag"));
   bag[9] = '1';  // "#ROSBAG V1.0"
   std::vector<std::string> w;
-  EXPECT_THAT(Error([&] { ReadAll(dir.Write("old.bag", bag), w); }),
+  EXPECT_THAT(ErrorText([&] { ReadAll(dir.Write("old.bag", bag), w); }),
               HasSubstr("old.bag: a ROS 1 bag of format 1.0 (only 2.0 is read)"));
 }
 
@@ -307,7 +307,7 @@ TEST(ReadImuMessages, CorruptChunkNamesItsOffset) {
   const std::size_t chunk = FindNth(bag, "compression=bz2", 5);
   for (std::size_t i = chunk + 200; i < chunk + 260; ++i) bag[i] = '\x55';
   std::vector<std::string> w;
-  EXPECT_THAT(Error([&] { ReadAll(dir.Write("bad.bag", bag), w); }),
+  EXPECT_THAT(ErrorText([&] { ReadAll(dir.Write("bad.bag", bag), w); }),
               ::testing::AllOf(HasSubstr("bad.bag: chunk at byte"), HasSubstr("bz2")));
 }
 
@@ -319,7 +319,7 @@ TEST(ReadImuMessages, UnknownCompressionIsNamed) {
     bag.replace(at + 12, 3, "xz9");
   }
   std::vector<std::string> w;
-  EXPECT_THAT(Error([&] { ReadAll(dir.Write("xz.bag", bag), w); }),
+  EXPECT_THAT(ErrorText([&] { ReadAll(dir.Write("xz.bag", bag), w); }),
               HasSubstr("unknown chunk compression 'xz9'"));
 }
 
@@ -337,7 +337,7 @@ TEST(ReadImuMessages, SkipsChunksWithoutTheTopic) {
   std::string imu = ReadFile(Bag("imu_none.bag"));
   const std::size_t later = FindNth(imu, "compression=none", 5);
   for (std::size_t i = later + 100; i < later + 400; ++i) imu[i] = '\xff';
-  EXPECT_THAT(Error([&] { ReadAll(dir.Write("bad.bag", imu), w); }),
+  EXPECT_THAT(ErrorText([&] { ReadAll(dir.Write("bad.bag", imu), w); }),
               HasSubstr("chunk at byte"));
 }
 
@@ -374,7 +374,7 @@ TEST(ReadImuMessages, AnIndexEntryThatIsNotItsRecordIsRefused) {
   const std::size_t entry = bag.find("count=", index) + 6 + 4 + 4;
   bag[entry + 4] = static_cast<char>(bag[entry + 4] + 1);
   std::vector<std::string> w;
-  EXPECT_THAT(Error([&] { ReadAll(dir.Write("index.bag", bag), w); }),
+  EXPECT_THAT(ErrorText([&] { ReadAll(dir.Write("index.bag", bag), w); }),
               ::testing::AllOf(HasSubstr("index.bag: chunk at byte"),
                                HasSubstr("the index gives a message of connection 1"),
                                HasSubstr("the record there is not it")));
@@ -408,7 +408,7 @@ TEST(ReadImuMessages, McapSkipsChunksWithoutTheTopic) {
   const std::size_t later = FindNth(imu, zstd, 5);
   ASSERT_NE(later, std::string::npos);
   for (std::size_t i = later + 20; i < later + 400; ++i) imu[i] = '\xff';
-  EXPECT_THAT(Error([&] { ReadAll(dir.Write("bad.mcap", imu), w); }),
+  EXPECT_THAT(ErrorText([&] { ReadAll(dir.Write("bad.mcap", imu), w); }),
               HasSubstr("bad.mcap: chunk at byte"));
 }
 
@@ -424,7 +424,7 @@ TEST(ReadImuMessages, McapUnknownCompressionIsNamed) {
   }
   ASSERT_GT(patched, 1);
   std::vector<std::string> w;
-  EXPECT_THAT(Error([&] { ReadAll(dir.Write("zsth.mcap", mcap), w); }),
+  EXPECT_THAT(ErrorText([&] { ReadAll(dir.Write("zsth.mcap", mcap), w); }),
               ::testing::AllOf(HasSubstr("zsth.mcap: chunk at byte"),
                                HasSubstr("unknown chunk compression 'zsth'")));
 }
@@ -436,7 +436,7 @@ TEST(ReadImuMessages, McapChunkCrcIsChecked) {
   mcap[frame] = 'J';
   std::vector<std::string> w;
   EXPECT_THAT(
-      Error([&] { ReadAll(dir.Write("crc.mcap", mcap), w); }),
+      ErrorText([&] { ReadAll(dir.Write("crc.mcap", mcap), w); }),
       ::testing::AllOf(HasSubstr("crc.mcap: chunk at byte"), HasSubstr("CRC-32")));
 }
 
@@ -451,7 +451,7 @@ TEST(ReadImuMessages, McapLz4ChunkDamageIsFoundByTheCrc) {
   mcap[literal] = 'J';
   std::vector<std::string> w;
   EXPECT_THAT(
-      Error([&] { ReadAll(dir.Write("lz4crc.mcap", mcap), w); }),
+      ErrorText([&] { ReadAll(dir.Write("lz4crc.mcap", mcap), w); }),
       ::testing::AllOf(HasSubstr("lz4crc.mcap: chunk at byte"), HasSubstr("CRC-32")));
 }
 
@@ -468,7 +468,7 @@ TEST(ReadImuMessages, Ros1Lz4ChunkDamageIsFoundByTheFrameChecksum) {
   // Undamaged, the frame's checksum holds.
   EXPECT_EQ(ReadAll(dir.Write("good.bag", bag), w).size(), kRows);
   bag[literal] = 'J';
-  EXPECT_THAT(Error([&] { ReadAll(dir.Write("xxh.bag", bag), w); }),
+  EXPECT_THAT(ErrorText([&] { ReadAll(dir.Write("xxh.bag", bag), w); }),
               ::testing::AllOf(HasSubstr("xxh.bag: chunk at byte"),
                                HasSubstr("content checksum")));
 }
@@ -482,7 +482,7 @@ TEST(ReadImuMessages, AChunkSizeAboveTheCapIsRefused) {
   const std::size_t size_at = bag.find("size=", chunk) + 5;
   bag.replace(size_at, 4, "\xff\xff\xff\xff");
   std::vector<std::string> w;
-  EXPECT_THAT(Error([&] { ReadAll(dir.Write("huge.bag", bag), w); }),
+  EXPECT_THAT(ErrorText([&] { ReadAll(dir.Write("huge.bag", bag), w); }),
               ::testing::AllOf(HasSubstr("chunk at byte"), HasSubstr("above the cap")));
 }
 
