@@ -29,24 +29,16 @@ import random
 
 import rosbag
 import rospy
-from sensor_msgs.msg import Imu
+
+from make_ros1_bags import imu_message
 
 EPOCH_S = 1700000000
 SEED = 25
 
 
 def message(stamp_ns, row, seq, ax_offset=0.0):
-    m = Imu()
-    m.header.seq = seq
-    m.header.stamp = rospy.Time(nsecs=stamp_ns)
-    m.header.frame_id = "imu_link"
-    m.orientation_covariance[0] = -1.0
+    m = imu_message(seq, row, stamp_ns)
     m.linear_acceleration.x = float(row["ax"]) + ax_offset
-    m.linear_acceleration.y = float(row["ay"])
-    m.linear_acceleration.z = float(row["az"])
-    m.angular_velocity.x = float(row["gx"])
-    m.angular_velocity.y = float(row["gy"])
-    m.angular_velocity.z = float(row["gz"])
     return m
 
 
