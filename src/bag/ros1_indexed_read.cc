@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,10 +32,12 @@ struct Entry {
 };
 
 // The entries of `ids` in the index data records that follow a chunk (the
-// first other record ends them), in the chunk's order.
-std::vector<Entry> EntriesAfter(BagFile& file,
-                                std::uint64_t pos,
-                                const std::set<std::uint32_t>& ids) {
+// first other record ends them), in the chunk's order; nullopt, read no
+// further, when they are more than the `expected` the chunk info counts.
+std::optional<std::vector<Entry>> EntriesAfter(BagFile& file,
+                                               std::uint64_t pos,
+                                               const std::set<std::uint32_t>& ids,
+                                               std::uint64_t expected) {
   std::vector<Entry> entries;
   while (pos < file.size()) {
     const Record r = RecordAt(file, pos);
@@ -44,6 +47,7 @@ std::vector<Entry> EntriesAfter(BagFile& file,
       if (U32Field(r.fields, "ver") != 1)
         throw DataError("an index data record of a version other than 1");
       const std::uint64_t count = U32Field(r.fields, "count");
+      if (entries.size() + count > expected) return std::nullopt;
       if (count * kEntryBytes != r.data_length || r.data_length > kBagMaxRecordBytes) {
         throw DataError("an index data record of " + std::to_string(count) +
                         " entries holds " + std::to_string(r.data_length) + " bytes");
@@ -127,8 +131,10 @@ bool ReadIndexedMessages(BagFile& file,
       U32Field(chunk.fields, "size") != chunk.data_length) {
     return false;
   }
-  const std::vector<Entry> entries = EntriesAfter(file, chunk.next, ids);
-  if (entries.size() != expected) return false;
+  const std::optional<std::vector<Entry>> found =
+      EntriesAfter(file, chunk.next, ids, expected);
+  if (!found || found->size() != expected) return false;
+  const std::vector<Entry>& entries = *found;
   const std::vector<Span> spans = SpansOf(entries, chunk.data_length);
   std::uint64_t planned = 0;
   for (const Span& s : spans) planned += s.end - s.begin;
