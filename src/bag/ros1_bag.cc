@@ -340,12 +340,10 @@ BagSummary InspectRos1(const std::string& path) {
   v.on_message = [&](const Record& r, std::string_view) { stats[r.conn].Add(r.time_ns); };
   v.on_index = [&](const Record& r, std::string_view data) {
     if (!opened.index.usable) return;
-    ByteCursor c(data);
     Stats& s = stats[ros1::U32Field(r.fields, "conn")];
-    for (std::uint32_t n = ros1::U32Field(r.fields, "count"); n > 0; --n) {
-      const std::int64_t sec = c.U32("an index entry");
-      s.Add(sec * 1'000'000'000 + c.U32("an index entry"));
-      c.U32("an index entry");
+    for (const ros1::IndexDataEntry& e :
+         ros1::ParseIndexData(data, ros1::U32Field(r.fields, "count"))) {
+      s.Add(e.time_ns);
     }
   };
   Walk(file, opened, v, summary.warnings);

@@ -18,12 +18,11 @@ constexpr std::uint64_t kJoinGap = 4096;
 // Bytes read from a span's last record on: a sensor_msgs/Imu record is
 // about 380 bytes; a longer record is read again on its own.
 constexpr std::uint64_t kRecordGuess = 512;
-constexpr std::uint64_t kEntryBytes = 12;
+constexpr std::uint64_t kEntryBytes = 12;  // time (u32 sec, u32 nsec), offset (u32)
 // The least a sensor_msgs/Imu message record takes: its header (the
 // length, op, conn and time fields: 4 + 8 + 13 + 17) and data length (4),
 // then seq, stamp and the frame's length (16) and 37 doubles (296).
-constexpr std::uint64_t kLeastImuRecordBytes =
-    4 + 38 + 4 + 16 + 296;  // time (u32 sec, u32 nsec), offset (u32)
+constexpr std::uint64_t kLeastImuRecordBytes = 4 + 38 + 4 + 16 + 296;
 
 struct Entry {
   std::uint64_t offset = 0;  // in the chunk's data
@@ -53,14 +52,9 @@ std::optional<std::vector<Entry>> EntriesAfter(BagFile& file,
                         " entries holds " + std::to_string(r.data_length) + " bytes");
       }
       const std::string data = file.ReadAt(r.data_offset, r.data_length, "index data");
-      ByteCursor c(data);
-      for (std::uint64_t k = 0; k < count; ++k) {
-        Entry e;
-        const std::int64_t sec = c.U32("an index entry");
-        e.time_ns = sec * 1'000'000'000 + c.U32("an index entry");
-        e.offset = c.U32("an index entry");
-        e.conn = conn;
-        entries.push_back(e);
+      for (const IndexDataEntry& e :
+           ParseIndexData(data, static_cast<std::uint32_t>(count))) {
+        entries.push_back({e.offset, e.time_ns, conn});
       }
     }
     pos = r.next;

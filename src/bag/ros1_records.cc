@@ -196,6 +196,21 @@ Record RecordAt(BagFile& file, std::uint64_t offset) {
   return r;
 }
 
+std::vector<IndexDataEntry> ParseIndexData(std::string_view data, std::uint32_t count) {
+  // Checked before the room is made: the count is read from the file.
+  if (std::uint64_t{count} * 12 > data.size()) {
+    throw DataError("an index data record of " + std::to_string(count) +
+                    " entries holds " + std::to_string(data.size()) + " bytes");
+  }
+  ByteCursor c(data);
+  std::vector<IndexDataEntry> entries(count);
+  for (IndexDataEntry& e : entries) {
+    e.time_ns = TimeOf(c.Bytes(8, "an index entry"));
+    e.offset = c.U32("an index entry");
+  }
+  return entries;
+}
+
 Connection ParseConnection(const Record& record, std::string_view data) {
   Connection c;
   c.id = U32Field(record.fields, "conn");

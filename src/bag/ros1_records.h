@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "bag/bag_io.h"
 
@@ -114,6 +115,18 @@ Record RecordIn(std::string_view buffer, std::uint64_t offset);
 /// Reads the header of the record at `offset` in `file` (not its data).
 /// \throws DataError when a length runs past the file or above the caps.
 Record RecordAt(BagFile& file, std::uint64_t offset);
+
+/// One entry of an index data record (bag.py 2778-2800): a message's time
+/// and the offset of its record in the chunk's data.
+struct IndexDataEntry {
+  std::int64_t time_ns = 0;
+  std::uint32_t offset = 0;
+};
+
+/// The `count` entries of an index data record's data (12 bytes each:
+/// u32 sec, u32 nsec, u32 offset).
+/// \throws DataError when the data holds fewer.
+std::vector<IndexDataEntry> ParseIndexData(std::string_view data, std::uint32_t count);
 
 /// A connection: a topic from one publisher, with its message type.
 struct Connection {
